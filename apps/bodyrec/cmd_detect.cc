@@ -1,0 +1,44 @@
+// `bodyrec detect`: people detection on a video, images or a camera.
+#include <iostream>
+
+#include "bodyrec/io/frame_source.h"
+#include "command.h"
+#include "common_options.h"
+#include "detection_job.h"
+
+namespace bodyrec::cli {
+namespace {
+
+struct DetectCommand {
+  SourceOptions source;
+  OutputOptions outputs;
+  DetectorOptions detector;
+
+  void run() const {
+    auto frames = open_source(source);
+    auto people = make_detector(detector);
+    const auto stats = run_detection(*frames, *people, outputs, true, nullptr);
+    if (!outputs.quiet && !outputs.jsonl.empty())
+      std::cerr << "bodyrec detect: " << stats.frames << " frames, "
+                << (stats.frames ? stats.detector_ms / stats.frames : 0.0) << " ms per frame (" << people->describe()
+                << ")\n";
+  }
+};
+
+void add(CLI::App& app) {
+  auto command = std::make_shared<DetectCommand>();
+  CLI::App* sub = app.add_subcommand("detect", "Detect people in a video, images or a camera stream");
+  sub->footer(
+      "Writes one JSON object per frame: {\"frame\":N,\"time\":S,\"detections\":[{\"box\":[x,y,w,h],\"score\":s}]}\n"
+      "Example: bodyrec detect /usr/share/doc/opencv-doc/examples/data/vtest.avi --jsonl out/detect.jsonl "
+      "--annotate out/detect.avi");
+  add_source_options(*sub, command->source);
+  add_output_options(*sub, command->outputs);
+  add_detector_options(*sub, command->detector);
+  sub->callback([command] { command->run(); });
+}
+
+const bool registered = register_command({"", 10, add});
+
+}  // namespace
+}  // namespace bodyrec::cli

@@ -1,0 +1,78 @@
+#include "common_options.h"
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/detection/fhog_detector.h"
+#include "bodyrec/detection/hog_people_detector.h"
+
+namespace bodyrec::cli {
+
+void add_source_options(CLI::App& sub, SourceOptions& o, bool source_flag) {
+  const char* help = "Input: a video file, an image, a directory of images (sorted by name) or a glob";
+  if (source_flag)
+    sub.add_option("--source", o.path, help);
+  else
+    sub.add_option("source", o.path, help);
+  sub.add_option("--camera", o.camera, "Read a live camera (V4L2 index) instead of a file; -1 = none");
+  sub.add_option("--start", o.start, "First frame index to process");
+  sub.add_option("--max-frames", o.max_frames, "Process at most this many frames; -1 = all");
+  sub.add_option("--every", o.every, "Process every Nth frame")->check(CLI::PositiveNumber);
+}
+
+void add_output_options(CLI::App& sub, OutputOptions& o) {
+  sub.add_option("--jsonl", o.jsonl, "Write JSON Lines (one object per frame) to FILE; default stdout");
+  sub.add_option("--annotate", o.annotate,
+                 "Write annotated frames: a video if it ends in .avi/.mp4/.mkv/.mov, else a PNG folder");
+  sub.add_option("--mot", o.mot, "Write MOTChallenge text (frame,id,x,y,w,h,score,-1,-1,-1; 1-based)");
+  sub.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
+}
+
+void add_detector_options(CLI::App& sub, DetectorOptions& o) {
+  sub.add_option("--preset", o.preset,
+                 "HOG preset: 'default' (tuned: motion regions, people 60-140 px, stride 8) or 'thesis' "
+                 "(hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original size)")
+      ->check(CLI::IsMember({"default", "thesis"}));
+  sub.add_option("--model", o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
+  sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
+  sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
+  const std::string p = " (default: from --preset)";
+  o.o_hog_model = sub.add_option("--hog-model", o.hog_model, "HOG SVM: 'default' (64x128) or 'daimler' (48x96)")
+                      ->check(CLI::IsMember({"default", "daimler"}));
+  o.o_hit = sub.add_option("--hit-threshold", o.hit_threshold, "HOG: SVM score threshold" + p);
+  o.o_stride = sub.add_option("--win-stride", o.win_stride, "HOG: window stride in pixels" + p);
+  o.o_padding = sub.add_option("--padding", o.padding, "HOG: padding in pixels" + p);
+  o.o_scale = sub.add_option("--scale", o.scale, "HOG: pyramid scale step" + p);
+  o.o_group = sub.add_option("--group-threshold", o.group_threshold, "HOG: grouping threshold" + p);
+  o.o_resize = sub.add_option("--resize", o.resize, "HOG: image scale factor before detection" + p);
+  o.o_levels = sub.add_option("--levels", o.levels, "HOG: pyramid levels searched" + p);
+  sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
+  sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
+      ->check(CLI::IsMember({"on", "off", "preset"}));
+  sub.add_option("--nms-iou", o.nms_iou, "Non-maximum suppression IoU threshold");
+}
+
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o) {
+  if (!o.model_file.empty()) {
+    FhogOptions f;
+    f.model_path = o.model_file;
+    f.upsample = o.fhog_upsample;
+    f.adjust_threshold = o.fhog_threshold;
+    f.nms_iou = o.nms_iou;
+    return std::make_unique<FhogDetector>(f);
+  }
+  HogOptions h = hog_preset(o.preset);
+  auto given = [](const CLI::Option* opt) { return opt && opt->count() > 0; };
+  if (given(o.o_hog_model)) h.model = o.hog_model;
+  if (given(o.o_hit)) h.hit_threshold = o.hit_threshold;
+  if (given(o.o_stride)) h.win_stride = o.win_stride;
+  if (given(o.o_padding)) h.padding = o.padding;
+  if (given(o.o_scale)) h.scale = o.scale;
+  if (given(o.o_group)) h.group_threshold = o.group_threshold;
+  if (given(o.o_resize)) h.resize = o.resize;
+  if (given(o.o_levels)) h.levels = o.levels;
+  if (o.roi.size() == 4) h.roi = cv::Rect(o.roi[0], o.roi[1], o.roi[2], o.roi[3]);
+  if (o.motion != "preset") h.motion_roi = o.motion == "on";
+  h.nms_iou = o.nms_iou;
+  return std::make_unique<HogPeopleDetector>(h);
+}
+
+}  // namespace bodyrec::cli

@@ -1,0 +1,59 @@
+#include "detection_job.h"
+
+#include <chrono>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+#include "bodyrec/io/annotate.h"
+#include "bodyrec/io/progress.h"
+#include "bodyrec/io/sinks.h"
+
+namespace bodyrec::cli {
+
+DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, const OutputOptions& outputs,
+                                bool write_jsonl,
+                                const std::function<void(const Frame&, const std::vector<Detection>&)>& on_frame) {
+  std::optional<JsonlWriter> jsonl;
+  std::optional<MotWriter> mot;
+  std::optional<AnnotatedWriter> annotated;
+  if (write_jsonl) jsonl.emplace(outputs.jsonl);
+  if (!outputs.mot.empty()) mot.emplace(outputs.mot);
+  if (!outputs.annotate.empty()) annotated.emplace(outputs.annotate, source.fps().value_or(25.0));
+
+  Progress progress(source.frame_count(), outputs.quiet);
+  DetectionRunStats stats;
+  Frame frame;
+  while (source.read(frame)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<Detection> detections = detector.detect(frame.image);
+    stats.detector_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ++stats.frames;
+
+    if (jsonl) {
+      nlohmann::json row = {{"frame", frame.index}, {"time", frame.time_s}, {"detections", nlohmann::json::array()}};
+      for (const auto& d : detections)
+        row["detections"].push_back({{"box", {d.box.x, d.box.y, d.box.width, d.box.height}}, {"score", d.score}});
+      jsonl->write(row);
+    }
+    if (mot) {
+      for (const auto& d : detections) mot->write(frame.index, -1, d.box, d.score);
+      mot->end_frame();
+    }
+    if (annotated) {
+      cv::Mat canvas = frame.image.clone();
+      for (const auto& d : detections) {
+        std::ostringstream label;
+        label << std::fixed << std::setprecision(2) << d.score;
+        draw_labelled_box(canvas, d.box, colors::kGreen, label.str());
+      }
+      draw_caption(canvas, "frame " + std::to_string(frame.index) + "  people " + std::to_string(detections.size()));
+      annotated->write(frame.index, canvas);
+    }
+    if (on_frame) on_frame(frame, detections);
+    progress.update(stats.frames);
+  }
+  return stats;
+}
+
+}  // namespace bodyrec::cli

@@ -1,0 +1,43 @@
+// bodyrec: people recognition from body shape and appearance with one camera or RGB-D sensor.
+// This file only wires the registered subcommands together and maps errors to exit codes.
+#include <iostream>
+
+#include <opencv2/core.hpp>
+
+#include "bodyrec/core/error.h"
+#include "command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "bodyrec: finds people, outlines their body contours, tells group leaders from members and\n"
+      "passers-by, and re-identifies people who come back, with one camera or one RGB-D sensor.\n"
+      "Exit codes: 0 ok, 2 usage error, 3 input error, 4 processing error.",
+      "bodyrec"};
+  app.option_defaults()->always_capture_default();
+  app.set_version_flag("--version", std::string(BODYREC_VERSION));
+  app.require_subcommand(1);
+  app.fallthrough();
+
+  CLI::App* eval = app.add_subcommand("eval", "Score a stage against ground truth");
+  eval->require_subcommand(1);
+  for (const auto& command : bodyrec::cli::registered_commands()) {
+    command.add(command.parent == "eval" ? *eval : app);
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);  // prints help, version or the usage error
+    return rc == 0 ? 0 : static_cast<int>(bodyrec::ExitCode::kUsage);
+  } catch (const bodyrec::Error& e) {
+    std::cerr << "bodyrec: error: " << e.what() << "\n";
+    return static_cast<int>(e.code());
+  } catch (const cv::Exception& e) {
+    std::cerr << "bodyrec: error: OpenCV: " << e.err << " (in " << e.func << ")\n";
+    return static_cast<int>(bodyrec::ExitCode::kProcessing);
+  } catch (const std::exception& e) {
+    std::cerr << "bodyrec: error: " << e.what() << "\n";
+    return static_cast<int>(bodyrec::ExitCode::kProcessing);
+  }
+  return 0;
+}

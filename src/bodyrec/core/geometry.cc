@@ -1,0 +1,37 @@
+#include "bodyrec/core/geometry.h"
+
+#include <algorithm>
+
+namespace bodyrec {
+
+double iou(const Box& a, const Box& b) {
+  const double inter = (a & b).area();
+  const double uni = a.area() + b.area() - inter;
+  return (a.area() <= 0 || b.area() <= 0 || uni <= 0) ? 0.0 : inter / uni;
+}
+
+std::vector<Detection> non_max_suppression(std::vector<Detection> detections, double iou_threshold,
+                                           double containment_threshold) {
+  std::stable_sort(detections.begin(), detections.end(),
+                   [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  std::vector<Detection> kept;
+  for (const Detection& d : detections) {
+    const bool suppressed = std::any_of(kept.begin(), kept.end(), [&](const Detection& k) {
+      if (iou(d.box, k.box) > iou_threshold) return true;
+      const double area = d.box.area();
+      return area > 0 && (d.box & k.box).area() / area > containment_threshold;
+    });
+    if (!suppressed) kept.push_back(d);
+  }
+  return kept;
+}
+
+Box scale_box(const Box& b, double factor) {
+  return Box(b.x * factor, b.y * factor, b.width * factor, b.height * factor);
+}
+
+Box clip_box(const Box& b, const cv::Size& size) {
+  return b & Box(0, 0, size.width, size.height);
+}
+
+}  // namespace bodyrec

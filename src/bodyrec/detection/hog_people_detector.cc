@@ -1,0 +1,116 @@
+#include "bodyrec/detection/hog_people_detector.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace bodyrec {
+
+void HogOptions::set_height_range(double min_height, double max_height) {
+  const double window_height = (model == "daimler" ? 96.0 : 128.0) * body_height;
+  resize = window_height / min_height;
+  levels = static_cast<int>(std::ceil(std::log(max_height / min_height) / std::log(scale))) + 1;
+}
+
+void HogOptions::check() const {
+  if (model != "default" && model != "daimler")
+    throw UsageError("HOG model must be 'default' or 'daimler' (got '" + model + "')");
+  if (win_stride < 1) throw UsageError("--win-stride must be >= 1");
+  if (padding < 0) throw UsageError("--padding must be >= 0");
+  if (!(scale > 1.0)) throw UsageError("--scale must be > 1");
+  if (group_threshold < 0) throw UsageError("--group-threshold must be >= 0");
+  if (!(resize > 0.05 && resize <= 8)) throw UsageError("--resize must be in (0.05, 8]");
+  if (levels < 1) throw UsageError("--levels must be >= 1");
+  if (!(nms_iou > 0 && nms_iou <= 1)) throw UsageError("--nms-iou must be in (0, 1]");
+  if (roi.width < 0 || roi.height < 0) throw UsageError("--roi must have a positive size");
+  motion.check();
+}
+
+HogOptions hog_preset(const std::string& name) {
+  HogOptions o;
+  if (name == "thesis") return o;  // the struct defaults are the thesis's call
+  if (name == "default") {
+    o.win_stride = 8;  // a multiple of the 8-pixel cell: OpenCV's fast path (stride 12 is slower)
+    o.group_threshold = 2;
+    o.scale = 1.08;
+    o.set_height_range(60, 140);
+    o.motion_roi = true;
+    return o;
+  }
+  throw UsageError("unknown preset '" + name + "' (expected 'default' or 'thesis')");
+}
+
+HogPeopleDetector::HogPeopleDetector(const HogOptions& options) : options_(options) {
+  options_.check();
+  if (options_.model == "daimler") {
+    hog_ = cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
+    hog_.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
+  } else {
+    hog_.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
+  }
+  hog_.nlevels = options_.levels;
+  if (options_.motion_roi) motion_.emplace(options_.motion);
+}
+
+Box HogPeopleDetector::body_box(const Box& w) const {
+  const double cx = w.x + options_.body_center_x * w.width, cy = w.y + options_.body_center_y * w.height;
+  const double bw = options_.body_width * w.width, bh = options_.body_height * w.height;
+  return Box(cx - bw / 2, cy - bh / 2, bw, bh);
+}
+
+std::vector<Detection> HogPeopleDetector::detect_windows(const cv::Mat& frame, const cv::Rect& region) {
+  const double r = options_.resize;
+  cv::Mat image;
+  cv::resize(frame(region), image, cv::Size(), r, r, r > 1 ? cv::INTER_LINEAR : cv::INTER_AREA);
+  // detectMultiScale needs at least one window; pad small regions with border pixels.
+  const cv::Size win = hog_.winSize;
+  const int pad_x = std::max(0, win.width - image.cols), pad_y = std::max(0, win.height - image.rows);
+  if (pad_x || pad_y) cv::copyMakeBorder(image, image, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
+  std::vector<cv::Rect> found;
+  std::vector<double> weights;
+  hog_.detectMultiScale(image, found, weights, options_.hit_threshold,
+                        cv::Size(options_.win_stride, options_.win_stride),
+                        cv::Size(options_.padding, options_.padding), options_.scale,
+                        options_.group_threshold);
+  std::vector<Detection> out;
+  for (size_t i = 0; i < found.size(); ++i) {
+    const Box b = scale_box(Box(found[i]), 1.0 / r);
+    out.push_back({Box(b.x + region.x, b.y + region.y, b.width, b.height), weights[i]});
+  }
+  return out;
+}
+
+std::vector<Detection> HogPeopleDetector::detect(const cv::Mat& frame) {
+  const cv::Rect whole(0, 0, frame.cols, frame.rows);
+  const cv::Rect base = options_.roi.area() > 0 ? (options_.roi & whole) : whole;
+  std::vector<cv::Rect> regions{base};
+  if (motion_) {
+    regions.clear();
+    for (const cv::Rect& m : motion_->update(frame)) {
+      const cv::Rect r = m & base;
+      if (r.area() > 0) regions.push_back(r);
+    }
+  }
+  std::vector<Detection> detections;
+  for (const cv::Rect& region : regions) {
+    for (Detection& d : detect_windows(frame, region)) {
+      d.box = clip_box(body_box(d.box), frame.size());
+      if (d.box.area() > 0) detections.push_back(d);
+    }
+  }
+  return finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
+}
+
+std::string HogPeopleDetector::describe() const {
+  std::ostringstream s;
+  s << "OpenCV HOG (" << options_.model << " SVM, hit " << options_.hit_threshold << ", stride "
+    << options_.win_stride << ", padding " << options_.padding << ", scale " << options_.scale << ", group "
+    << options_.group_threshold << ", resize " << options_.resize << ", levels " << options_.levels
+    << (options_.motion_roi ? ", motion regions" : "") << ")";
+  return s.str();
+}
+
+}  // namespace bodyrec

@@ -1,0 +1,62 @@
+// OpenCV's HOG + linear SVM people detector (Dalal & Triggs), with every detectMultiScale parameter
+// exposed, a person-height range that sets how far the image is upscaled and how many pyramid levels
+// are searched, optional motion regions of interest, and boxes shrunk from the detector window to the
+// body (the PETS/MOT convention).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <opencv2/objdetect.hpp>
+
+#include "bodyrec/detection/motion_regions.h"
+#include "bodyrec/detection/people_detector.h"
+
+namespace bodyrec {
+
+struct HogOptions {
+  std::string model = "default";  // "default" (64x128 INRIA SVM) or "daimler" (48x96)
+  double hit_threshold = -0.2;    // SVM score a window must exceed
+  int win_stride = 12;            // window step in pixels of the (resized) image
+  int padding = 16;               // detectMultiScale padding
+  double scale = 1.05;            // pyramid step
+  int group_threshold = 2;        // detectMultiScale grouping (0 = raw windows, then only our NMS)
+  double resize = 1.0;            // image scale factor before detection (>1 finds smaller people)
+  int levels = 64;                // pyramid levels searched (1 = only the resized size)
+  cv::Rect roi;                   // region of interest in frame pixels; empty = whole frame
+  bool motion_roi = false;        // search only around moving regions (see MotionRegions)
+  MotionRegionOptions motion;
+  double nms_iou = 0.4;           // our NMS after grouping
+  // Where the body sits in the detector window, as fractions of the window (measured on PETS boxes).
+  double body_width = 0.50, body_height = 0.75, body_center_x = 0.52, body_center_y = 0.48;
+
+  // Sets resize and levels so that people from min_height to max_height pixels tall (in the frame) are
+  // searched: the smallest fills the window at the first level, the tallest at the last.
+  void set_height_range(double min_height, double max_height);
+  void check() const;  // throws UsageError naming the bad field
+};
+
+// Named presets: "thesis" (the thesis's Ch4 call: hit -0.2, stride 12, padding 16, scale 1.05, group 2,
+// original size, whole frame) and "default" (tuned on vtest.avi for AP50 per millisecond).
+HogOptions hog_preset(const std::string& name);
+
+class HogPeopleDetector : public PeopleDetector {
+ public:
+  explicit HogPeopleDetector(const HogOptions& options);
+  std::vector<Detection> detect(const cv::Mat& frame) override;
+  std::string describe() const override;
+
+  // Detector windows (frame pixels) and scores before shrinking to the body and before our NMS.
+  std::vector<Detection> detect_windows(const cv::Mat& frame, const cv::Rect& region);
+
+  // The body box inside a detector window.
+  Box body_box(const Box& window) const;
+
+ private:
+  HogOptions options_;
+  cv::HOGDescriptor hog_;
+  std::optional<MotionRegions> motion_;
+};
+
+}  // namespace bodyrec

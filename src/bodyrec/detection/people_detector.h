@@ -1,0 +1,31 @@
+// The people-detector interface every detector implements, so the pipeline can swap them by name.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "bodyrec/core/geometry.h"
+
+namespace bodyrec {
+
+class PeopleDetector {
+ public:
+  virtual ~PeopleDetector() = default;
+  // Detects people in one BGR frame. Detectors that use motion keep state: call on consecutive frames
+  // of one source. ENSURES: boxes are tight to the body, in frame pixels, clipped to the frame, with
+  // non-maximum suppression applied; higher score = more confident.
+  virtual std::vector<Detection> detect(const cv::Mat& frame) = 0;
+  virtual std::string describe() const = 0;
+};
+
+}  // namespace bodyrec
+
+namespace bodyrec {
+
+// Rounds boxes to 0.01 px and scores to 1e-6, the precision every sink writes, so that results
+// recomputed from a written file (JSONL, MOT) are the very numbers bodyrec scored.
+std::vector<Detection> finalize_detections(std::vector<Detection> detections);
+
+}  // namespace bodyrec

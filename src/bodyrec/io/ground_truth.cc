@@ -1,0 +1,127 @@
+#include "bodyrec/io/ground_truth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/io/xml_document.h"
+
+namespace bodyrec {
+namespace {
+
+void check_size(const LabelledBox& b, const std::string& where) {
+  if (b.box.width < 0 || b.box.height < 0)
+    throw InputError(where + ": negative box size (w=" + std::to_string(b.box.width) +
+                     ", h=" + std::to_string(b.box.height) + ")");
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  std::istringstream s(line);
+  // MOT files use commas; some tools write spaces or tabs. Accept either, never both empty fields.
+  const char sep = line.find(',') != std::string::npos ? ',' : ' ';
+  while (std::getline(s, field, sep)) {
+    field.erase(0, field.find_first_not_of(" \t\r"));
+    field.erase(field.find_last_not_of(" \t\r") + 1);
+    if (!field.empty() || sep == ',') fields.push_back(field);
+  }
+  return fields;
+}
+
+double parse_number(const std::string& text, const std::string& where, const char* field) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw InputError(where + ": field '" + field + "' is not a finite number: '" + text + "'");
+  return v;
+}
+
+}  // namespace
+
+std::map<int, std::vector<LabelledBox>> GroundTruth::by_frame() const {
+  std::map<int, std::vector<LabelledBox>> frames;
+  for (const auto& b : boxes) frames[b.frame].push_back(b);
+  return frames;
+}
+
+GroundTruth read_cvml(const std::string& path) {
+  const pugi::xml_document doc = load_xml_file(path);
+  const pugi::xml_node root = doc.child("dataset");
+  if (!root) throw InputError(path + ": not CVML ground truth (no <dataset> root element)");
+  GroundTruth gt;
+  for (const pugi::xml_node frame : root.children("frame")) {
+    const int number = required_int(frame, "number", path + ": <frame>");
+    if (number < 0) throw InputError(path + ": frame " + std::to_string(number) + ": negative frame number");
+    gt.frame_count = std::max(gt.frame_count, number + 1);
+    const std::string frame_where = path + ": frame " + std::to_string(number);
+    for (const pugi::xml_node object : frame.child("objectlist").children("object")) {
+      const int id = required_int(object, "id", frame_where + ": <object>");
+      const std::string where = frame_where + ": object " + std::to_string(id);
+      const pugi::xml_node box = object.child("box");
+      if (!box) throw InputError(where + ": missing <box>");
+      LabelledBox b;
+      b.frame = number;
+      b.id = id;
+      const double w = required_number(box, "w", where), h = required_number(box, "h", where);
+      b.box = Box(required_number(box, "xc", where) - w / 2, required_number(box, "yc", where) - h / 2, w, h);
+      check_size(b, where);
+      gt.boxes.push_back(b);
+    }
+  }
+  if (gt.frame_count == 0) throw InputError(path + ": no <frame> elements");
+  return gt;
+}
+
+GroundTruth read_mot(const std::string& path, bool is_ground_truth) {
+  std::ifstream in(path);
+  if (!in) throw InputError("cannot read " + path);
+  GroundTruth gt;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const std::string where = path + ": line " + std::to_string(line_number);
+    const auto f = split_fields(line);
+    if (f.size() < 6)
+      throw InputError(where + ": expected at least 6 comma-separated fields (frame,id,x,y,w,h), got " +
+                       std::to_string(f.size()));
+    LabelledBox b;
+    const double frame = parse_number(f[0], where, "frame");
+    if (frame < 1 || frame != std::floor(frame) || frame > 1e8)
+      throw InputError(where + ": field 'frame' must be an integer >= 1 (MOTChallenge frames are 1-based), got '" +
+                       f[0] + "'");
+    b.frame = static_cast<int>(frame) - 1;
+    b.id = static_cast<int>(parse_number(f[1], where, "id"));
+    b.box = Box(parse_number(f[2], where, "x"), parse_number(f[3], where, "y"), parse_number(f[4], where, "w"),
+                parse_number(f[5], where, "h"));
+    check_size(b, where);
+    if (f.size() > 6) b.score = parse_number(f[6], where, "conf");
+    if (is_ground_truth) {
+      const bool zero_conf = f.size() > 6 && b.score == 0;
+      const bool other_class = f.size() > 7 && parse_number(f[7], where, "class") != 1 &&
+                               parse_number(f[7], where, "class") != -1;
+      b.ignore = zero_conf || other_class;
+      b.score = 1.0;
+    }
+    gt.frame_count = std::max(gt.frame_count, b.frame + 1);
+    gt.boxes.push_back(b);
+  }
+  if (in.bad()) throw InputError("error while reading " + path);
+  return gt;
+}
+
+GroundTruth read_ground_truth(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError("ground truth not found: " + path);
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".xml" ? read_cvml(path) : read_mot(path, true);
+}
+
+}  // namespace bodyrec

@@ -1,0 +1,95 @@
+#include "bodyrec/io/sinks.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace bodyrec {
+namespace {
+
+void make_parent_dirs(const std::string& path) {
+  const fs::path parent = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (ec) throw ProcessingError("cannot create folder " + parent.string() + ": " + ec.message());
+}
+
+}  // namespace
+
+bool is_video_path(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext == ".avi" || ext == ".mp4" || ext == ".mkv" || ext == ".mov";
+}
+
+JsonlWriter::JsonlWriter(const std::string& path) : path_(path) {
+  if (path.empty() || path == "-") return;
+  make_parent_dirs(path);
+  file_ = std::make_unique<std::ofstream>(path, std::ios::trunc);
+  if (!*file_) throw ProcessingError("cannot create " + path);
+}
+
+void JsonlWriter::write(const nlohmann::json& object) {
+  std::ostream& out = file_ ? static_cast<std::ostream&>(*file_) : std::cout;
+  out << object.dump() << '\n';
+  out.flush();
+  if (!out) throw ProcessingError("cannot write to " + (file_ ? path_ : std::string("stdout")));
+}
+
+MotWriter::MotWriter(const std::string& path) : path_(path) {
+  make_parent_dirs(path);
+  out_.open(path, std::ios::trunc);
+  if (!out_) throw ProcessingError("cannot create " + path);
+  out_ << std::setprecision(6) << std::fixed;
+}
+
+void MotWriter::write(int frame, int id, const Box& box, double score) {
+  out_ << frame + 1 << ',' << id << ',' << std::setprecision(2) << box.x << ',' << box.y << ','
+       << box.width << ',' << box.height << ',' << std::setprecision(6) << score << ",-1,-1,-1\n";
+}
+
+void MotWriter::end_frame() {
+  out_.flush();
+  if (!out_) throw ProcessingError("cannot write to " + path_);
+}
+
+AnnotatedWriter::AnnotatedWriter(const std::string& path, double fps)
+    : path_(path), fps_(fps > 0 ? fps : 25.0), is_video_(is_video_path(path)) {
+  if (is_video_) {
+    make_parent_dirs(path);
+  } else {
+    std::error_code ec;
+    fs::create_directories(path, ec);
+    if (ec) throw ProcessingError("cannot create folder " + path + ": " + ec.message());
+  }
+}
+
+AnnotatedWriter::~AnnotatedWriter() { video_.release(); }
+
+void AnnotatedWriter::write(int frame_index, const cv::Mat& image) {
+  if (!is_video_) {
+    std::ostringstream name;
+    name << std::setw(6) << std::setfill('0') << frame_index << ".png";
+    const std::string file = (fs::path(path_) / name.str()).string();
+    if (!cv::imwrite(file, image)) throw ProcessingError("cannot write " + file);
+    return;
+  }
+  if (!video_.isOpened()) {
+    const bool mp4 = fs::path(path_).extension() == ".mp4";
+    const int fourcc = mp4 ? cv::VideoWriter::fourcc('m', 'p', '4', 'v') : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
+    if (!video_.open(path_, fourcc, fps_, image.size()))
+      throw ProcessingError("cannot create video " + path_);
+  }
+  video_.write(image);
+}
+
+}  // namespace bodyrec

@@ -1,0 +1,90 @@
+#include "test_support.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace bodyrec::testing {
+namespace {
+
+std::string env_or(const char* name, const std::string& fallback) {
+  const char* v = std::getenv(name);
+  return (v && *v) ? std::string(v) : fallback;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+std::string data_root_description() {
+  const char* v = std::getenv("BODYREC_DATA");
+  return (v && *v) ? std::string(v)
+                   : "unset, tried " + (fs::path(env_or("BODYREC_SOURCE_DIR", ".")) / ".." / "shared" /
+                                        "datasets").string();
+}
+
+fs::path data_root() {
+  fs::path root = env_or("BODYREC_DATA", "");
+  if (root.empty()) root = fs::path(env_or("BODYREC_SOURCE_DIR", ".")) / ".." / "shared" / "datasets";
+  std::error_code ec;
+  return fs::is_directory(root, ec) ? root : fs::path();
+}
+
+fs::path data_path(const std::string& relative) {
+  const fs::path root = data_root();
+  if (root.empty()) return {};
+  const fs::path p = root / relative;
+  std::error_code ec;
+  return fs::exists(p, ec) ? p : fs::path();
+}
+
+fs::path vtest_path() { return "/usr/share/doc/opencv-doc/examples/data/vtest.avi"; }
+
+RunResult run_bodyrec(const std::vector<std::string>& args) {
+  TempDir tmp;
+  std::string cmd = shell_quote(env_or("BODYREC_BIN", "bodyrec"));
+  for (const auto& a : args) cmd += " " + shell_quote(a);
+  cmd += " >" + shell_quote((tmp / "out").string()) + " 2>" + shell_quote((tmp / "err").string()) +
+         " </dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_text(tmp / "out");
+  r.err = read_text(tmp / "err");
+  return r;
+}
+
+TempDir::TempDir() {
+  std::random_device rd;
+  path_ = fs::temp_directory_path() /
+          ("bodyrec-test-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
+  fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+}  // namespace bodyrec::testing

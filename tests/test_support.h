@@ -1,0 +1,56 @@
+// Helpers shared by the test programs: where the datasets are, running the `bodyrec` binary, temp dirs.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace bodyrec::testing {
+
+// The datasets folder: $BODYREC_DATA, else ../shared/datasets beside the repository. Empty when absent.
+std::filesystem::path data_root();
+
+// A dataset sub-folder or file; empty path when it is absent.
+std::filesystem::path data_path(const std::string& relative);
+
+// Skips the current test with a message naming what is missing, when `relative` is not in the datasets.
+#define BODYREC_REQUIRE_DATA(var, relative)                                                         \
+  const std::filesystem::path var = ::bodyrec::testing::data_path(relative);                        \
+  if (var.empty())                                                                                  \
+  GTEST_SKIP() << "dataset " << (relative) << " not found under BODYREC_DATA ("                     \
+               << ::bodyrec::testing::data_root_description() << ")"
+
+std::string data_root_description();
+
+// vtest.avi from Debian's opencv-doc (installed by scripts/install-deps).
+std::filesystem::path vtest_path();
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// Runs build/bin/bodyrec with the given arguments (each shell-quoted), capturing stdout and stderr.
+RunResult run_bodyrec(const std::vector<std::string>& args);
+
+// A fresh empty directory under the system temp dir, removed at destruction.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+std::string read_text(const std::filesystem::path& path);
+void write_text(const std::filesystem::path& path, const std::string& text);
+
+}  // namespace bodyrec::testing
