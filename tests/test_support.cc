@@ -25,16 +25,18 @@ std::string shell_quote(const std::string& s) {
 
 }  // namespace
 
+std::string source_dir() { return env_or("BODYREC_SOURCE_DIR", BODYREC_SOURCE_DIR_DEFAULT); }
+
 std::string data_root_description() {
   const char* v = std::getenv("BODYREC_DATA");
   return (v && *v) ? std::string(v)
-                   : "unset, tried " + (fs::path(env_or("BODYREC_SOURCE_DIR", ".")) / ".." / "shared" /
+                   : "unset, tried " + (fs::path(source_dir()) / ".." / "shared" /
                                         "datasets").string();
 }
 
 fs::path data_root() {
   fs::path root = env_or("BODYREC_DATA", "");
-  if (root.empty()) root = fs::path(env_or("BODYREC_SOURCE_DIR", ".")) / ".." / "shared" / "datasets";
+  if (root.empty()) root = fs::path(source_dir()) / ".." / "shared" / "datasets";
   std::error_code ec;
   return fs::is_directory(root, ec) ? root : fs::path();
 }
@@ -51,7 +53,7 @@ fs::path vtest_path() { return "/usr/share/doc/opencv-doc/examples/data/vtest.av
 
 RunResult run_bodyrec(const std::vector<std::string>& args) {
   TempDir tmp;
-  std::string cmd = shell_quote(env_or("BODYREC_BIN", "bodyrec"));
+  std::string cmd = shell_quote(env_or("BODYREC_BIN", BODYREC_BIN_DEFAULT));
   for (const auto& a : args) cmd += " " + shell_quote(a);
   cmd += " >" + shell_quote((tmp / "out").string()) + " 2>" + shell_quote((tmp / "err").string()) +
          " </dev/null";

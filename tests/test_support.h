@@ -24,6 +24,9 @@ std::filesystem::path data_path(const std::string& relative);
 
 std::string data_root_description();
 
+// The repository root (to find tests/tools and fixtures).
+std::string source_dir();
+
 // vtest.avi from Debian's opencv-doc (installed by scripts/install-deps).
 std::filesystem::path vtest_path();
 

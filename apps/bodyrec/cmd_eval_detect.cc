@@ -27,7 +27,7 @@ struct EvalDetectCommand {
     const GroundTruth truth = read_ground_truth(gt);
     const auto truth_by_frame = truth.by_frame();
     auto frames = open_source(source);
-    auto people = make_detector(detector);
+    auto people = make_detector(detector, frames->fps().has_value());
     DetectionEvaluator evaluator(iou);
     const std::vector<LabelledBox> none;
     const auto stats = run_detection(*frames, *people, outputs, !outputs.jsonl.empty(),

@@ -34,7 +34,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   sub.add_option("--model", o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
-  const std::string p = " (default: from --preset)";
+  const std::string p = " (default: the preset's value)";
   o.o_hog_model = sub.add_option("--hog-model", o.hog_model, "HOG SVM: 'default' (64x128) or 'daimler' (48x96)")
                       ->check(CLI::IsMember({"default", "daimler"}));
   o.o_hit = sub.add_option("--hit-threshold", o.hit_threshold, "HOG: SVM score threshold" + p);
@@ -44,13 +44,15 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   o.o_group = sub.add_option("--group-threshold", o.group_threshold, "HOG: grouping threshold" + p);
   o.o_resize = sub.add_option("--resize", o.resize, "HOG: image scale factor before detection" + p);
   o.o_levels = sub.add_option("--levels", o.levels, "HOG: pyramid levels searched" + p);
+  for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels})
+    opt->default_str("preset");
   sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
   sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
       ->check(CLI::IsMember({"on", "off", "preset"}));
   sub.add_option("--nms-iou", o.nms_iou, "Non-maximum suppression IoU threshold");
 }
 
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o) {
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool consecutive_frames) {
   if (!o.model_file.empty()) {
     FhogOptions f;
     f.model_path = o.model_file;
@@ -71,6 +73,7 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o) {
   if (given(o.o_levels)) h.levels = o.levels;
   if (o.roi.size() == 4) h.roi = cv::Rect(o.roi[0], o.roi[1], o.roi[2], o.roi[3]);
   if (o.motion != "preset") h.motion_roi = o.motion == "on";
+  else if (!consecutive_frames) h.motion_roi = false;
   h.nms_iou = o.nms_iou;
   return std::make_unique<HogPeopleDetector>(h);
 }

@@ -43,6 +43,9 @@ struct DetectorOptions {
 void add_detector_options(CLI::App& sub, DetectorOptions& options);
 
 // Builds the detector; throws UsageError for inconsistent options, InputError for a bad model file.
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options);
+// `consecutive_frames` says the frames come from one video or camera: motion regions (when the preset
+// or --motion asks for them) only make sense then, so for unrelated images they are off unless
+// --motion on is given.
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, bool consecutive_frames = true);
 
 }  // namespace bodyrec::cli

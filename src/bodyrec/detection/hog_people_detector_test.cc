@@ -1,0 +1,84 @@
+#include "bodyrec/detection/hog_people_detector.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace bodyrec {
+namespace {
+
+TEST(HogPreset, ThesisPresetIsTheThesisCall) {
+  const HogOptions o = hog_preset("thesis");
+  EXPECT_DOUBLE_EQ(o.hit_threshold, -0.2);
+  EXPECT_EQ(o.win_stride, 12);
+  EXPECT_EQ(o.padding, 16);
+  EXPECT_DOUBLE_EQ(o.scale, 1.05);
+  EXPECT_EQ(o.group_threshold, 2);
+  EXPECT_DOUBLE_EQ(o.resize, 1.0);
+  EXPECT_FALSE(o.motion_roi);
+}
+
+TEST(HogPreset, DefaultSearchesSixtyToHundredFortyPixelPeople) {
+  const HogOptions o = hog_preset("default");
+  // The body is 0.75 of the 128-px window: 96 px at scale 1. A 60-px person needs a 1.6x resize.
+  EXPECT_NEAR(o.resize, 1.6, 1e-9);
+  // Levels reach 140 px: 1.08^(levels-1) >= 140/60.
+  EXPECT_GE(std::pow(o.scale, o.levels - 1), 140.0 / 60.0);
+  EXPECT_LT(std::pow(o.scale, o.levels - 2), 140.0 / 60.0);
+  EXPECT_TRUE(o.motion_roi);
+}
+
+TEST(HogPreset, UnknownPresetAndBadOptionsAreUsageErrors) {
+  EXPECT_THROW(hog_preset("fast"), UsageError);
+  HogOptions o;
+  o.scale = 1.0;
+  EXPECT_THROW(o.check(), UsageError);
+  o = HogOptions();
+  o.win_stride = 0;
+  EXPECT_THROW(HogPeopleDetector{o}, UsageError);
+}
+
+TEST(HogPeopleDetector, BodyBoxIsShrunkFromTheWindow) {
+  HogPeopleDetector detector(hog_preset("thesis"));
+  const Box body = detector.body_box(Box(100, 200, 64, 128));
+  EXPECT_NEAR(body.width, 32, 1e-9);
+  EXPECT_NEAR(body.height, 96, 1e-9);
+  EXPECT_NEAR(body.x + body.width / 2, 100 + 0.52 * 64, 1e-9);
+  EXPECT_NEAR(body.y + body.height / 2, 200 + 0.48 * 128, 1e-9);
+}
+
+TEST(HogPeopleDetector, BlankFrameHasNoPeopleAndTinyFrameDoesNotCrash) {
+  HogPeopleDetector detector(hog_preset("thesis"));
+  EXPECT_TRUE(detector.detect(cv::Mat(240, 320, CV_8UC3, cv::Scalar(128, 128, 128))).empty());
+  EXPECT_TRUE(detector.detect(cv::Mat(10, 10, CV_8UC3, cv::Scalar(0, 0, 0))).empty());
+  HogPeopleDetector with_motion(hog_preset("default"));
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(with_motion.detect(cv::Mat(240, 320, CV_8UC3, cv::Scalar(90, 90, 90))).empty());
+}
+
+TEST(MergeOverlapping, MergesChainsAndKeepsDisjoint) {
+  const auto out = merge_overlapping({cv::Rect(0, 0, 10, 10), cv::Rect(5, 5, 10, 10), cv::Rect(12, 12, 5, 5),
+                                      cv::Rect(100, 100, 5, 5)});
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0], cv::Rect(0, 0, 17, 17));
+  EXPECT_EQ(out[1], cv::Rect(100, 100, 5, 5));
+}
+
+TEST(MotionRegions, FindsAMovingSquare) {
+  MotionRegionOptions options;
+  options.work_width = 320;
+  MotionRegions motion(options);
+  std::vector<cv::Rect> regions;
+  for (int i = 0; i < 30; ++i) {
+    cv::Mat frame(240, 320, CV_8UC3, cv::Scalar(60, 60, 60));
+    cv::rectangle(frame, cv::Rect(20 + 5 * i, 100, 20, 40), cv::Scalar(230, 230, 230), cv::FILLED);
+    regions = motion.update(frame);
+  }
+  ASSERT_EQ(regions.size(), 1u);
+  const cv::Rect square(20 + 5 * 29, 100, 20, 40);
+  EXPECT_EQ((regions[0] & square), square);  // the region covers the square's last position
+}
+
+}  // namespace
+}  // namespace bodyrec
