@@ -1,13 +1,28 @@
 // bodyrec: people recognition from body shape and appearance with one camera or RGB-D sensor.
 // This file only wires the registered subcommands together and maps errors to exit codes.
+#include <cstdlib>
 #include <iostream>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include "bodyrec/core/error.h"
 #include "command.h"
 
+namespace {
+
+// OpenCV and FFmpeg print their own multi-line diagnostics (GStreamer probing, damaged blocks); bodyrec
+// reports each failure as one line instead. Setting OPENCV_LOG_LEVEL or OPENCV_FFMPEG_LOGLEVEL in the
+// environment brings them back for debugging.
+void quiet_library_logs() {
+  if (!std::getenv("OPENCV_LOG_LEVEL")) cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  quiet_library_logs();
   CLI::App app{
       "bodyrec: finds people, outlines their body contours, tells group leaders from members and\n"
       "passers-by, and re-identifies people who come back, with one camera or one RGB-D sensor.\n"

@@ -136,7 +136,7 @@ std::unique_ptr<FrameSource> open_video(const SourceOptions& o) {
     if (probe.peek() == std::ifstream::traits_type::eof())
       throw InputError("video file is empty: " + o.path);
   }
-  cv::VideoCapture capture(o.path, cv::CAP_ANY);
+  cv::VideoCapture capture(o.path, cv::CAP_FFMPEG);
   if (!capture.isOpened())
     throw InputError("cannot open " + o.path + " as a video (unknown format or corrupt file)");
   return std::make_unique<CaptureSource>(std::move(capture), o.path, o, true);
