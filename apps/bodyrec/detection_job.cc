@@ -7,19 +7,15 @@
 
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
-#include "bodyrec/io/sinks.h"
+#include "run_sinks.h"
 
 namespace bodyrec::cli {
 
 DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, const OutputOptions& outputs,
                                 bool write_jsonl,
                                 const std::function<void(const Frame&, const std::vector<Detection>&)>& on_frame) {
-  std::optional<JsonlWriter> jsonl;
-  std::optional<MotWriter> mot;
-  std::optional<AnnotatedWriter> annotated;
-  if (write_jsonl) jsonl.emplace(outputs.jsonl);
-  if (!outputs.mot.empty()) mot.emplace(outputs.mot);
-  if (!outputs.annotate.empty()) annotated.emplace(outputs.annotate, source.fps().value_or(25.0));
+  RunSinks sinks(outputs, write_jsonl, source.fps().value_or(25.0));
+  auto& [jsonl, mot, annotated] = sinks;
 
   Progress progress(source.frame_count(), outputs.quiet);
   DetectionRunStats stats;

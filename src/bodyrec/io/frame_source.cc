@@ -180,9 +180,14 @@ std::unique_ptr<FrameSource> open_source(const SourceOptions& o) {
     return std::make_unique<CaptureSource>(std::move(capture), "camera " + std::to_string(o.camera), o,
                                            false);
   }
-  if (o.path.find_first_of("*?[") != std::string::npos) {
+  // cv::glob understands only '*' and '?' (in the file name); other paths, '[' included, are taken as is.
+  if (o.path.find_first_of("*?") != std::string::npos) {
     std::vector<cv::String> matches;
-    cv::glob(o.path, matches, false);
+    try {
+      cv::glob(o.path, matches, false);
+    } catch (const cv::Exception&) {
+      matches.clear();  // the pattern's folder does not exist or cannot be read
+    }
     std::vector<std::string> files;
     for (const auto& m : matches)
       if (is_image_path(m)) files.push_back(m);

@@ -23,12 +23,15 @@ std::vector<std::string> split_fields(const std::string& line) {
   std::vector<std::string> fields;
   std::string field;
   std::istringstream s(line);
-  // MOT files use commas; some tools write spaces or tabs. Accept either, never both empty fields.
-  const char sep = line.find(',') != std::string::npos ? ',' : ' ';
-  while (std::getline(s, field, sep)) {
+  // MOT files use commas; some tools write spaces or tabs. Accept either (runs of blanks are one separator).
+  if (line.find(',') == std::string::npos) {
+    while (s >> field) fields.push_back(field);
+    return fields;
+  }
+  while (std::getline(s, field, ',')) {
     field.erase(0, field.find_first_not_of(" \t\r"));
     field.erase(field.find_last_not_of(" \t\r") + 1);
-    if (!field.empty() || sep == ',') fields.push_back(field);
+    fields.push_back(field);
   }
   return fields;
 }
@@ -97,7 +100,10 @@ GroundTruth read_mot(const std::string& path, bool is_ground_truth) {
       throw InputError(where + ": field 'frame' must be an integer >= 1 (MOTChallenge frames are 1-based), got '" +
                        f[0] + "'");
     b.frame = static_cast<int>(frame) - 1;
-    b.id = static_cast<int>(parse_number(f[1], where, "id"));
+    const double id = parse_number(f[1], where, "id");
+    if (id != std::floor(id) || std::fabs(id) > 1e9)
+      throw InputError(where + ": field 'id' must be an integer, got '" + f[1] + "'");
+    b.id = static_cast<int>(id);
     b.box = Box(parse_number(f[2], where, "x"), parse_number(f[3], where, "y"), parse_number(f[4], where, "w"),
                 parse_number(f[5], where, "h"));
     check_size(b, where);

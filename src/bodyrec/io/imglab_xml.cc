@@ -1,5 +1,6 @@
 #include "bodyrec/io/imglab_xml.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -95,7 +96,7 @@ std::vector<cv::Point2d> ordered_parts(const ImglabBox& box, const std::string& 
   for (const auto& p : box.parts) {
     char* end = nullptr;
     const long index = std::strtol(p.name.c_str(), &end, 10);
-    if (*end != '\0' || index < 0 || index > 100000)
+    if (p.name.empty() || !std::isdigit(static_cast<unsigned char>(p.name[0])) || *end != '\0' || index > 100000)
       throw InputError(where + ": part name '" + p.name + "' is not a landmark number");
     if (!by_index.emplace(static_cast<int>(index), p.point).second)
       throw InputError(where + ": part " + p.name + " appears twice");

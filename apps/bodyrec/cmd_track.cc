@@ -1,0 +1,48 @@
+// `bodyrec track`: multi-person tracking (detector + Kalman/Hungarian tracker) on a video, images or a camera.
+#include <iostream>
+
+#include "bodyrec/io/frame_source.h"
+#include "command.h"
+#include "common_options.h"
+#include "tracking_job.h"
+
+namespace bodyrec::cli {
+namespace {
+
+struct TrackCommand {
+  SourceOptions source;
+  OutputOptions outputs;
+  DetectorOptions detector;
+  TrackingJobOptions tracking;
+
+  void run() const {
+    tracking.tracker.check();
+    auto frames = open_source(source);
+    auto people = make_detector(detector, frames->fps().has_value());
+    const auto stats = run_tracking(*frames, *people, tracking, outputs, true, nullptr);
+    if (!outputs.quiet && !outputs.jsonl.empty())
+      std::cerr << "bodyrec track: " << stats.frames << " frames (" << stats.detected_frames << " detected), "
+                << (stats.frames ? stats.processing_ms / stats.frames : 0.0) << " ms per frame ("
+                << people->describe() << ")\n";
+  }
+};
+
+void add(CLI::App& app) {
+  auto command = std::make_shared<TrackCommand>();
+  CLI::App* sub = app.add_subcommand("track", "Track people (ids stable over time) in a video, images or a camera");
+  sub->footer(
+      "Writes one JSON object per frame: {\"frame\":N,\"time\":S,\"tracks\":[{\"id\":K,\"box\":[x,y,w,h],"
+      "\"state\":\"confirmed\"|\"lost\"}]}\n"
+      "Example: bodyrec track /usr/share/doc/opencv-doc/examples/data/vtest.avi --jsonl out/track.jsonl "
+      "--mot out/track.txt --annotate out/track.avi");
+  add_source_options(*sub, command->source);
+  add_output_options(*sub, command->outputs);
+  add_detector_options(*sub, command->detector);
+  add_tracker_options(*sub, command->tracking);
+  sub->callback([command] { command->run(); });
+}
+
+const bool registered = register_command({"", 20, add});
+
+}  // namespace
+}  // namespace bodyrec::cli

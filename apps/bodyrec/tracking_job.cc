@@ -1,0 +1,112 @@
+#include "tracking_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/io/annotate.h"
+#include "bodyrec/io/progress.h"
+#include "run_sinks.h"
+
+namespace bodyrec::cli {
+namespace {
+
+// A stable, well-spread colour per id (golden-angle hue steps).
+cv::Scalar id_color(int id) {
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((id * 137) % 180, 220, 255)), bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  const auto c = bgr.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
+// As finalize_detections: dividing by an exact power of ten gives the double nearest the decimal.
+double round_to(double v, double per_unit) { return std::round(v * per_unit) / per_unit; }
+
+}  // namespace
+
+void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
+  TrackerOptions& t = o.tracker;
+  sub.add_option("--detect-every", o.detect_every,
+                 "Run the detector on every Nth frame; the tracker predicts in between")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  sub.add_option("--min-hits", t.min_hits, "Detections needed to confirm a track")->capture_default_str();
+  sub.add_option("--max-age", t.max_age, "Frames a track survives without detections (occlusions)")
+      ->capture_default_str();
+  sub.add_option("--coast", t.coast_frames, "Frames a lost track is still reported at its predicted box")
+      ->capture_default_str();
+  sub.add_option("--iou-gate", t.iou_gate, "Least IoU between a detection and a predicted track box")
+      ->capture_default_str();
+  sub.add_option("--distance-gate", t.distance_gate,
+                 "Second pass: largest centre distance, in predicted box heights (0 = off)")
+      ->capture_default_str();
+  sub.add_option("--size-gate", t.size_gate, "Second pass: least height ratio of detection and track")
+      ->capture_default_str();
+  sub.add_option("--min-score", t.min_score, "Ignore detections scoring below this")->capture_default_str();
+  sub.add_option("--new-track-score", t.new_track_score,
+                 "Least detector score to start a track (weaker ones only extend tracks)")
+      ->capture_default_str();
+  sub.add_option("--kf-position-noise", t.noise.position, "Kalman position noise per frame, times box height")
+      ->capture_default_str();
+  sub.add_option("--kf-velocity-noise", t.noise.velocity, "Kalman velocity noise per frame, times box height")
+      ->capture_default_str();
+  sub.add_option("--kf-measurement-noise", t.noise.measurement, "Kalman measurement noise, times box height")
+      ->capture_default_str();
+}
+
+TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, const TrackingJobOptions& options,
+                              const OutputOptions& outputs, bool write_jsonl,
+                              const std::function<void(const Frame&, const std::vector<TrackedPerson>&)>& on_frame) {
+  if (options.detect_every < 1) throw UsageError("--detect-every must be >= 1");
+  MultiTracker tracker(options.tracker);
+  RunSinks sinks(outputs, write_jsonl, source.fps().value_or(25.0));
+  auto& [jsonl, mot, annotated] = sinks;
+
+  Progress progress(source.frame_count(), outputs.quiet);
+  TrackingRunStats stats;
+  Frame frame;
+  while (source.read(frame)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool detect = stats.frames % options.detect_every == 0;
+    std::vector<TrackedPerson> tracks;
+    if (detect) {
+      tracks = tracker.update(frame.index, detector.detect(frame.image));
+      ++stats.detected_frames;
+    } else {
+      tracks = tracker.predict_only(frame.index);
+    }
+    // Same precision as every sink writes, so results re-read from a file score the same.
+    for (auto& t : tracks)
+      t.box = Box(round_to(t.box.x, 100), round_to(t.box.y, 100), round_to(t.box.width, 100),
+                  round_to(t.box.height, 100));
+    stats.processing_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    ++stats.frames;
+
+    if (jsonl) {
+      nlohmann::json row = {{"frame", frame.index}, {"time", frame.time_s}, {"tracks", nlohmann::json::array()}};
+      for (const auto& t : tracks)
+        row["tracks"].push_back(
+            {{"id", t.id}, {"box", {t.box.x, t.box.y, t.box.width, t.box.height}}, {"state", to_string(t.state)}});
+      jsonl->write(row);
+    }
+    if (mot) {
+      for (const auto& t : tracks) mot->write(frame.index, t.id, t.box, 1.0);
+      mot->end_frame();
+    }
+    if (annotated) {
+      cv::Mat canvas = frame.image.clone();
+      for (const auto& t : tracks)
+        draw_labelled_box(canvas, t.box, id_color(t.id), std::to_string(t.id), t.state == TrackState::kLost ? 1 : 2);
+      draw_caption(canvas, "frame " + std::to_string(frame.index) + "  tracks " + std::to_string(tracks.size()) +
+                               (detect ? "" : "  (predicted)"));
+      annotated->write(frame.index, canvas);
+    }
+    if (on_frame) on_frame(frame, tracks);
+    progress.update(stats.frames);
+  }
+  return stats;
+}
+
+}  // namespace bodyrec::cli

@@ -1,0 +1,33 @@
+// `bodyrec eval track` on the first 150 frames of PETS 2009 S2L1 (vtest.avi): the tracking scores must
+// not regress. Measured with the default detector and tracker: MOTA 0.654, IDF1 0.683 (150 frames);
+// the bounds leave a margin for detector changes.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+
+namespace bodyrec::testing {
+namespace {
+
+nlohmann::json last_json_line(const std::string& out) {
+  const auto end = out.find_last_not_of('\n');
+  const auto start = out.rfind('\n', end);
+  return nlohmann::json::parse(out.substr(start == std::string::npos ? 0 : start + 1, end + 1));
+}
+
+TEST(TrackData, EvalTrackOnPets2009FirstFrames) {
+  BODYREC_REQUIRE_DATA(gt, "pets09_s2l1/PETS2009-S2L1.xml");
+  if (!std::filesystem::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  const RunResult r = run_bodyrec({"eval", "track", "--source", vtest_path().string(), "--gt", gt.string(),
+                                   "--max-frames", "150", "--json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto s = last_json_line(r.out);
+  EXPECT_EQ(s["frames"].get<int>(), 150);
+  EXPECT_GT(s["mota"].get<double>(), 0.58);
+  EXPECT_GT(s["idf1"].get<double>(), 0.60);
+  EXPECT_LT(s["id_switches"].get<int>(), 20);
+  for (const char* key : {"motp", "fp", "fn", "ms_per_frame"}) EXPECT_TRUE(s.contains(key)) << key;
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
