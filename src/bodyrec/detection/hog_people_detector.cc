@@ -1,6 +1,9 @@
 #include "bodyrec/detection/hog_people_detector.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <tuple>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
@@ -8,6 +11,28 @@
 #include "bodyrec/core/error.h"
 
 namespace bodyrec {
+namespace {
+
+// Puts windows and their weights in one canonical order (position, size, weight).
+void sort_windows(std::vector<cv::Rect>& rects, std::vector<double>& weights) {
+  std::vector<size_t> order(rects.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const cv::Rect &ra = rects[a], &rb = rects[b];
+    return std::tie(ra.y, ra.x, ra.height, ra.width, weights[a]) <
+           std::tie(rb.y, rb.x, rb.height, rb.width, weights[b]);
+  });
+  std::vector<cv::Rect> sorted_rects;
+  std::vector<double> sorted_weights;
+  for (size_t i : order) {
+    sorted_rects.push_back(rects[i]);
+    sorted_weights.push_back(weights[i]);
+  }
+  rects.swap(sorted_rects);
+  weights.swap(sorted_weights);
+}
+
+}  // namespace
 
 void HogOptions::set_height_range(double min_height, double max_height) {
   const double window_height = (model == "daimler" ? 96.0 : 128.0) * body_height;
@@ -72,10 +97,14 @@ std::vector<Detection> HogPeopleDetector::detect_windows(const cv::Mat& frame, c
   if (pad_x || pad_y) cv::copyMakeBorder(image, image, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
   std::vector<cv::Rect> found;
   std::vector<double> weights;
+  // Raw windows first, grouped afterwards in a fixed order: detectMultiScale collects the pyramid levels
+  // from parallel threads in varying order, and its grouping averages boxes in that order, so its own
+  // grouping gives slightly different boxes from run to run.
   hog_.detectMultiScale(image, found, weights, options_.hit_threshold,
                         cv::Size(options_.win_stride, options_.win_stride),
-                        cv::Size(options_.padding, options_.padding), options_.scale,
-                        options_.group_threshold);
+                        cv::Size(options_.padding, options_.padding), options_.scale, 0);
+  sort_windows(found, weights);
+  if (options_.group_threshold > 0) hog_.groupRectangles(found, weights, options_.group_threshold, 0.2);
   std::vector<Detection> out;
   for (size_t i = 0; i < found.size(); ++i) {
     const Box b = scale_box(Box(found[i]), 1.0 / r);
