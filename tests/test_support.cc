@@ -84,6 +84,16 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
+nlohmann::json last_json_line(const std::string& out) {
+  const auto end = out.find_last_not_of("\r\n");
+  if (end == std::string::npos) return nlohmann::json();
+  const auto newline = out.rfind('\n', end);
+  const auto start = newline == std::string::npos ? 0 : newline + 1;
+  return nlohmann::json::parse(out.substr(start, end + 1 - start));
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;

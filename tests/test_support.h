@@ -6,6 +6,9 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "bodyrec/core/error.h"
 
 namespace bodyrec::testing {
 
@@ -54,6 +57,27 @@ class TempDir {
 };
 
 std::string read_text(const std::filesystem::path& path);
+
+// The last non-empty line of a command's stdout, parsed as JSON (the `--json` summary).
+nlohmann::json last_json_line(const std::string& out);
+
+bool contains(const std::string& text, const std::string& part);
+
+// Runs `parse` and returns the InputError message ("" and a test failure when nothing or something else
+// is thrown).
+template <typename F>
+std::string input_error(F parse) {
+  try {
+    parse();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected InputError, got: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "expected InputError, nothing thrown";
+  return "";
+}
 void write_text(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace bodyrec::testing

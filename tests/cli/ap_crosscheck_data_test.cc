@@ -10,12 +10,6 @@
 namespace bodyrec::testing {
 namespace {
 
-nlohmann::json last_json_line(const std::string& out) {
-  const auto end = out.find_last_not_of('\n');
-  const auto start = out.rfind('\n', end);
-  return nlohmann::json::parse(out.substr(start == std::string::npos ? 0 : start + 1, end + 1));
-}
-
 TEST(ApCrosscheck, EvalDetectMatchesIndependentCodeOnItsOwnMotOutput) {
   BODYREC_REQUIRE_DATA(gt, "pets09_s2l1/PETS2009-S2L1.xml");
   if (std::system("python3 --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not installed";

@@ -9,12 +9,6 @@
 namespace bodyrec::testing {
 namespace {
 
-nlohmann::json last_json_line(const std::string& out) {
-  const auto end = out.find_last_not_of('\n');
-  const auto start = out.rfind('\n', end);
-  return nlohmann::json::parse(out.substr(start == std::string::npos ? 0 : start + 1, end + 1));
-}
-
 TEST(TrackData, EvalTrackOnPets2009FirstFrames) {
   BODYREC_REQUIRE_DATA(gt, "pets09_s2l1/PETS2009-S2L1.xml");
   if (!std::filesystem::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";

@@ -15,23 +15,8 @@ namespace {
 using testing::TempDir;
 using testing::write_text;
 
-// Runs `parse` and returns the InputError message ("" and a test failure when nothing or something else
-// is thrown).
-template <typename F>
-std::string input_error(F parse) {
-  try {
-    parse();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected InputError, nothing thrown";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using testing::contains;
+using testing::input_error;
 
 // Two frames, three objects; PETS writes the attributes in this (h, w, xc, yc) order.
 const char* kCvml = R"(<?xml version="1.0" encoding="utf-8"?>

@@ -15,21 +15,8 @@ namespace {
 using testing::TempDir;
 using testing::write_text;
 
-template <typename F>
-std::string input_error(F parse) {
-  try {
-    parse();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "expected InputError, nothing thrown";
-  return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using testing::contains;
+using testing::input_error;
 
 ImglabDataset sample_dataset() {
   ImglabDataset d;
