@@ -1,7 +1,6 @@
 #include "tracking_job.h"
 
 #include <chrono>
-#include <cmath>
 #include <optional>
 
 #include <opencv2/imgproc.hpp>
@@ -21,9 +20,6 @@ cv::Scalar id_color(int id) {
   const auto c = bgr.at<cv::Vec3b>(0, 0);
   return cv::Scalar(c[0], c[1], c[2]);
 }
-
-// As finalize_detections: dividing by an exact power of ten gives the double nearest the decimal.
-double round_to(double v, double per_unit) { return std::round(v * per_unit) / per_unit; }
 
 }  // namespace
 
@@ -78,9 +74,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
       tracks = tracker.predict_only(frame.index);
     }
     // Same precision as every sink writes, so results re-read from a file score the same.
-    for (auto& t : tracks)
-      t.box = Box(round_to(t.box.x, 100), round_to(t.box.y, 100), round_to(t.box.width, 100),
-                  round_to(t.box.height, 100));
+    for (auto& t : tracks) t.box = round_box_for_output(t.box);
     stats.processing_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++stats.frames;
 

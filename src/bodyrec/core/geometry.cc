@@ -1,6 +1,7 @@
 #include "bodyrec/core/geometry.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace bodyrec {
 
@@ -29,6 +30,13 @@ std::vector<Detection> non_max_suppression(std::vector<Detection> detections, do
 Box scale_box(const Box& b, double factor) {
   return Box(b.x * factor, b.y * factor, b.width * factor, b.height * factor);
 }
+
+Box round_box_for_output(const Box& b) {
+  auto r = [](double v) { return std::round(v * 100) / 100; };
+  return Box(r(b.x), r(b.y), r(b.width), r(b.height));
+}
+
+double round_score_for_output(double score) { return std::round(score * 1e6) / 1e6; }
 
 Box clip_box(const Box& b, const cv::Size& size) {
   return b & Box(0, 0, size.width, size.height);

@@ -30,6 +30,12 @@ std::vector<Detection> non_max_suppression(std::vector<Detection> detections, do
 // Scales a box about the origin (used to map boxes between resized and original images).
 Box scale_box(const Box& b, double factor);
 
+// Rounds a box to 0.01 px and a score to 1e-6, the precision every sink writes, so that results re-read
+// from a written file (JSONL, MOT) are the very numbers bodyrec scored. Dividing by an exact power of ten
+// gives the double nearest the decimal, which is what a parser of the text gets back.
+Box round_box_for_output(const Box& b);
+double round_score_for_output(double score);
+
 // Clips a box to an image of the given size; may return an empty box.
 Box clip_box(const Box& b, const cv::Size& size);
 

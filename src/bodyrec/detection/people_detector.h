@@ -24,8 +24,7 @@ class PeopleDetector {
 
 namespace bodyrec {
 
-// Rounds boxes to 0.01 px and scores to 1e-6, the precision every sink writes, so that results
-// recomputed from a written file (JSONL, MOT) are the very numbers bodyrec scored.
+// Rounds boxes and scores to the precision every sink writes (round_box_for_output).
 std::vector<Detection> finalize_detections(std::vector<Detection> detections);
 
 }  // namespace bodyrec
