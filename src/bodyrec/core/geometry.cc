@@ -42,4 +42,10 @@ Box clip_box(const Box& b, const cv::Size& size) {
   return b & Box(0, 0, size.width, size.height);
 }
 
+double box_gap(const Box& a, const Box& b) {
+  const double dx = std::max({0.0, a.x - (b.x + b.width), b.x - (a.x + a.width)});
+  const double dy = std::max({0.0, a.y - (b.y + b.height), b.y - (a.y + a.height)});
+  return std::hypot(dx, dy);
+}
+
 }  // namespace bodyrec

@@ -36,6 +36,10 @@ Box scale_box(const Box& b, double factor);
 Box round_box_for_output(const Box& b);
 double round_score_for_output(double score);
 
+// Gap between two boxes in pixels: 0 when they touch or overlap, else the Euclidean distance between
+// their closest points.
+double box_gap(const Box& a, const Box& b);
+
 // Clips a box to an image of the given size; may return an empty box.
 Box clip_box(const Box& b, const cv::Size& size);
 

@@ -1,0 +1,23 @@
+// Hand-labelled roles for `eval roles`: CSV rows frame,x,y,w,h,role (frame 0-based, box in pixels, role
+// leader | member | non-member). A first line starting with "frame" is a header; '#' lines are comments.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bodyrec/core/geometry.h"
+#include "bodyrec/groups/roles.h"
+
+namespace bodyrec {
+
+struct RoleLabel {
+  int frame = 0;
+  Box box;
+  Role role = Role::kUnknown;
+};
+
+// Throws InputError "<file>:<line>: ..." naming the field for a missing file, a wrong field count, a
+// non-numeric or negative value, an empty box or an unknown role.
+std::vector<RoleLabel> read_roles_csv(const std::string& path);
+
+}  // namespace bodyrec
