@@ -1,0 +1,100 @@
+// Online group membership from trajectories: who walks together, updated every frame from tracked
+// positions (ground plane in metres, or image pixels with a pixels-per-metre scale). Each update, every
+// pair of people seen in it gets the learned pair model's log-odds for the last `window_s` seconds
+// (pair_features.h); a pair's evidence is the mean of those log-odds over the time both were seen
+// (optionally fading with a half-life); groups are clusters of the pair graph (average linkage, so a
+// group needs most of its pairs to agree: A-B and B-C together pull A-C in, one weak link does not chain
+// two groups). The offline evaluation (`bodyrec eval groups`) replays ground truth through this class.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <opencv2/core/types.hpp>
+
+#include "bodyrec/groups/pair_features.h"
+#include "bodyrec/groups/pair_model.h"
+
+namespace bodyrec {
+
+enum class GroupLinkage {
+  kNone,     // offline scoring only: a pair is together when its own evidence is > 0 (no consistency)
+  kSingle,   // connected components of the pairs with evidence > 0
+  kAverage,  // merge clusters while the mean evidence over their known pairs is > 0
+};
+
+struct GroupOptions {
+  double window_s = 8.0;          // pair features over the last window_s seconds (the models' window)
+  double velocity_span_s = 0.4;   // velocity = displacement over at least this long (the models' span)
+  double units_per_metre = 1.0;   // positions are divided by this (pixels per metre for image positions)
+  double forget_after_s = 2.0;    // ids not updated for this long are forgotten
+  double evidence_half_life_s = 0;  // 0: a pair's evidence is the mean over all its common time
+  GroupLinkage linkage = GroupLinkage::kAverage;
+  // The pair model; null = the built-in model trained on all walking-group scenes.
+  std::shared_ptr<const PairModel> model;
+
+  // Throws UsageError naming the field when a value is out of range (window_s, velocity_span_s,
+  // units_per_metre, forget_after_s > 0; evidence_half_life_s >= 0).
+  void check() const;
+};
+
+class GroupMembership {
+ public:
+  // Throws UsageError for invalid options (GroupOptions::check), ProcessingError if no model is available.
+  explicit GroupMembership(GroupOptions options = {});
+
+  // One frame: the positions of the people visible at time t (seconds, increasing from call to call; a
+  // time not after the previous one throws UsageError). Ids absent for forget_after_s are forgotten.
+  // A track id listed twice throws UsageError.
+  void update(double t_seconds, const std::vector<std::pair<int, cv::Point2d>>& positions);
+
+  // Track id -> group id, for people in a group of 2 or more. A group keeps its id while it keeps most of
+  // its members (the new cluster sharing the most members with an old group inherits its id).
+  std::map<int, int> group_of() const;
+  // The groups (2+ members each, ids sorted), ordered by group id.
+  std::vector<std::vector<int>> groups() const;
+  // Probability that a and b walk together: logistic of their evidence; 0 when they were never seen
+  // together (or one was forgotten).
+  double pair_probability(int a, int b) const;
+  // Their evidence (mean log-odds, > 0 means together), if they were ever seen together.
+  std::optional<double> pair_evidence(int a, int b) const;
+  // Features of a and b over the window ending at the last update, if both were in it.
+  std::optional<PairFeatures> window_features(int a, int b) const;
+  // Drops a track and its pairs (e.g. when the tracker deletes it).
+  void forget(int id);
+
+  // The ids currently remembered (seen within forget_after_s).
+  std::vector<int> people() const;
+  const GroupOptions& options() const { return options_; }
+  const PairModel& model() const { return *model_; }
+
+ private:
+  struct Evidence {
+    double sum = 0;     // (decayed) sum of window log-odds
+    double weight = 0;  // (decayed) count of windows
+    double last_t = 0;
+  };
+  void regroup();
+  void drop(int id);  // forget without regrouping
+
+  GroupOptions options_;
+  std::shared_ptr<const PairModel> model_;
+  long step_ = 0;
+  double last_t_ = 0;
+  std::map<int, PersonHistory> people_;
+  std::map<std::pair<int, int>, Evidence> evidence_;  // keys (smaller id, larger id)
+  std::map<int, int> group_of_;
+  int next_group_id_ = 1;
+};
+
+// Clusters `ids` by pair evidence (keys (smaller, larger); pairs without an entry are unknown and neither
+// join nor split). Returns clusters of every size (singletons included), each sorted, in order of their
+// smallest id. kNone is treated as kSingle.
+std::vector<std::vector<int>> cluster_pairs(const std::vector<int>& ids,
+                                            const std::map<std::pair<int, int>, double>& evidence,
+                                            GroupLinkage linkage);
+
+}  // namespace bodyrec
