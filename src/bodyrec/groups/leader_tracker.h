@@ -26,7 +26,7 @@
 namespace bodyrec {
 
 struct LeaderTrackerOptions {
-  double min_psr = 6.0;          // below this peak-to-sidelobe ratio the tracker is lost
+  double min_psr = 4.0;          // below this peak-to-sidelobe ratio the tracker is lost (vtest: median 8)
   int max_disagreement = 3;      // frames in a row with IoU < disagree_iou against the leader's detection
   double disagree_iou = 0.3;
   int max_unsupported = 10;      // frames in a row without a detected track on the tracker's box

@@ -1,0 +1,76 @@
+// The whole group-leader pipeline per frame on vtest.avi (768x576), as `bodyrec groups` runs it by default:
+// HOG detection (default preset, motion regions) -> Kalman/Hungarian tracking -> three-frame motion ->
+// trajectory groups on the PETS ground plane -> roles -> DSST leader tracking -> Farneback direction.
+// Frames are decoded before timing and fed in video order, cycling over 300 frames (the frame counter
+// keeps increasing, so the trackers see one long video with a jump every 300 frames). Real time per
+// iteration = time per frame. BM_GroupStagesOnly leaves detection and tracking out (tracks recorded
+// from a first pass), to show what the Ch4 stages themselves cost.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "bench_support.h"
+#include "bodyrec/detection/hog_people_detector.h"
+#include "bodyrec/groups/group_pipeline.h"
+#include "bodyrec/io/ground_plane.h"
+#include "bodyrec/tracking/tracker.h"
+
+namespace {
+
+constexpr double kFps = 7.0;  // PETS 2009 S2.L1's recording rate
+
+std::shared_ptr<const bodyrec::GroundPlane> pets_ground() {
+  const char* env = std::getenv("BODYREC_DATA");
+  const std::filesystem::path path =
+      std::filesystem::path(env && *env ? env : "../shared/datasets") / "pets09_s2l1" / "View_001.xml";
+  if (!std::filesystem::exists(path)) return nullptr;  // pixels then; same cost
+  return bodyrec::read_tsai_calibration(path.string());
+}
+
+void BM_GroupsPipeline(benchmark::State& state) {
+  const auto& frames = bodyrec::bench::vtest_frames(0, 300);
+  if (frames.empty()) {
+    state.SkipWithError("vtest.avi not found (install opencv-doc: scripts/install-deps)");
+    return;
+  }
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::MultiTracker tracker;
+  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  int n = 0;
+  double leaders = 0;
+  for (auto _ : state) {
+    const cv::Mat& frame = frames[static_cast<size_t>(n) % frames.size()];
+    auto tracks = tracker.update(n, detector.detect(frame));
+    leaders += static_cast<double>(pipeline.process(frame, n / kFps, tracks).leaders.size());
+    ++n;
+  }
+  state.counters["leaders_per_frame"] = leaders / static_cast<double>(state.iterations());
+}
+
+void BM_GroupStagesOnly(benchmark::State& state) {
+  const auto& frames = bodyrec::bench::vtest_frames(0, 300);
+  if (frames.empty()) {
+    state.SkipWithError("vtest.avi not found (install opencv-doc: scripts/install-deps)");
+    return;
+  }
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::MultiTracker tracker;
+  std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
+  for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracker.update(static_cast<int>(i), detector.detect(frames[i])));
+  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  int n = 0;
+  for (auto _ : state) {
+    const size_t i = static_cast<size_t>(n) % frames.size();
+    benchmark::DoNotOptimize(pipeline.process(frames[i], n / kFps, tracks[i]));
+    ++n;
+  }
+}
+
+BENCHMARK(BM_GroupsPipeline)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(10.0);
+BENCHMARK(BM_GroupStagesOnly)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+
+}  // namespace
+
+BENCHMARK_MAIN();
