@@ -19,7 +19,8 @@ class Lines {
   // The next line's tokens; expects exactly `n` of them.
   std::vector<std::string> next(size_t n, const char* what) {
     std::string line;
-    if (!std::getline(in_, line)) fail(std::string("unexpected end of file, expected ") + what);
+    if (!std::getline(in_, line))
+      throw InputError(file_ + ": unexpected end of file after line " + std::to_string(line_) + ", expected " + what);
     ++line_;
     std::istringstream s(line);
     std::vector<std::string> tokens;
