@@ -2,6 +2,9 @@
 #include <filesystem>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "bodyrec/rgbd/recording.h"
 
 #include "test_support.h"
 
@@ -74,6 +77,33 @@ TEST(ImportCli, NtuSampleGivesJsonSummary) {
   const auto j = last_json_line(r.out);
   EXPECT_EQ(j["frames"].get<int>(), 66);
   EXPECT_EQ(j["bodies"].get<int>(), 2);
+}
+
+TEST(GreenScreenCli, WritesOneCutoutPerVisibleBodyAndRefusesBodiesOnlyRecordings) {
+  TempDir dir;
+  ASSERT_EQ(run_bodyrec({"synth", "--people", "2", "--seed", "3", "--frames", "60", "--out", (dir / "rec").string(), "-q"})
+                .exit_code,
+            0);
+  const RunResult r = run_bodyrec({"greenscreen", (dir / "rec").string(), "--out", (dir / "cut").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["frames"].get<int>(), 60);
+  int bodies = 0;  // one cut-out per body-index slot with pixels, per frame
+  for (int i = 0; i < 60; ++i) {
+    const auto truth = nlohmann::json::parse(read_text(dir / "rec" / "truth" / (frame_stem(i) + ".json")));
+    for (const auto& p : truth["people"]) bodies += p["visible_pixels"].get<int>() > 0 ? 1 : 0;
+  }
+  EXPECT_EQ(j["cutouts"].get<int>(), bodies);
+  EXPECT_GT(bodies, 60);
+  const cv::Mat cut = cv::imread((dir / "cut" / "000030_body0.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(cut.type(), CV_8UC4);
+  EXPECT_EQ(cut.size(), cv::Size(512, 424));
+
+  write_text(dir / "s.skeleton", "1\n0\n");
+  ASSERT_EQ(run_bodyrec({"import", "ntu", (dir / "s.skeleton").string(), "--out", (dir / "ntu").string()}).exit_code, 0);
+  const RunResult bad = run_bodyrec({"greenscreen", (dir / "ntu").string(), "--out", (dir / "cut2").string()});
+  EXPECT_EQ(bad.exit_code, 3);
+  EXPECT_TRUE(contains(bad.err, "greenscreen needs colour, depth and body index streams")) << bad.err;
 }
 
 }  // namespace

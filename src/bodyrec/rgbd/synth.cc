@@ -157,6 +157,8 @@ struct Synthesizer::Impl {
 
   double time_of(int index) const { return options.frames > 1 ? static_cast<double>(index) / (options.frames - 1) : 0.0; }
 
+  std::vector<std::vector<int>> entries;  // [person][frame]: times the person has come into view so far
+
   // Whether person i's SpineBase is inside the depth image at frame `index` (drives tracking ids).
   bool in_view(int i, int index) const {
     const synth::Pose p = pose_at(scripts[static_cast<size_t>(i)], time_of(index), looks[static_cast<size_t>(i)].height);
@@ -179,6 +181,19 @@ Synthesizer::Synthesizer(const SynthOptions& options) : impl_(std::make_unique<I
   m.meta.streams = {true, true, true, true, true};
   for (int i = 0; i < options.people; ++i) m.looks.push_back(synth::make_look(options.seed, i, options.people));
   m.scripts = make_scripts(options);
+  // Kinect gives a body a new tracking id each time it comes into view: count entries per frame once.
+  for (int i = 0; i < options.people; ++i) {
+    std::vector<int> counts;
+    bool was = false;
+    int entries = 0;
+    for (int k = 0; k < options.frames; ++k) {
+      const bool now = m.in_view(i, k);
+      if (now && !was) ++entries;
+      was = now;
+      counts.push_back(now ? entries : -entries);  // negative: out of view
+    }
+    m.entries.push_back(counts);
+  }
   const cv::Vec3d t = m.meta.depth_to_color.translation;
   m.color_target.k = m.meta.color;
   m.color_target.offset = cv::Vec3f(t);
@@ -265,13 +280,9 @@ RgbdFrame Synthesizer::render(int index) {
   for (int i = 0; i < n; ++i) {
     const synth::Look& look = m.looks[static_cast<size_t>(i)];
     const synth::PersonModel& model = models[static_cast<size_t>(i)];
-    int entries = 0;
-    bool was = false;
-    for (int k = 0; k <= index; ++k) {
-      const bool now = m.in_view(i, k);
-      if (now && !was) ++entries;
-      was = now;
-    }
+    const int entry = m.entries[static_cast<size_t>(i)][static_cast<size_t>(index)];
+    const bool was = entry > 0;
+    const int entries = std::abs(entry);
     PersonTruth t;
     t.identity = i;
     t.tracking_id = static_cast<uint64_t>(1000 + 100 * i + std::max(entries, 1) - 1);
