@@ -4,6 +4,14 @@
 // against the intrinsics, the format version, body slots 0..5, quaternions finite and non-zero; every
 // error is an InputError (ProcessingError when writing fails) whose one-line message names the file and
 // the field.
+//
+//   RecordingReader rec("rec_synth");
+//   for (RgbdFrame f; rec.read(f);) {
+//     // f.color BGR (colour intrinsics size), f.depth CV_16U (rec.meta().depth_unit_m per unit),
+//     // f.body_index CV_8U or empty, f.bodies, f.truth (synthetic recordings)
+//     const cv::Vec3d p = unproject(rec.meta().depth, u, v, f.depth.at<uint16_t>(v, u) * rec.meta().depth_unit_m);
+//     const auto in_colour = project(rec.meta().color, rec.meta().depth_to_color.apply(p));
+//   }
 #pragma once
 
 #include <array>
