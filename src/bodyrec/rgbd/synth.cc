@@ -95,10 +95,18 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
   std::vector<Script> scripts;
   const int n = o.people;
   const auto u = [&](int i, int k) { return uniform(o.seed, 500 + static_cast<uint64_t>(i), static_cast<uint64_t>(k)); };
+  // Everyone walks across in a lane (depth) of their own, at least 0.44 m from the next, so that people
+  // pass in front of each other instead of through each other. Lanes are shuffled by the seed.
+  std::vector<int> lane_of(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) lane_of[static_cast<size_t>(i)] = i;
+  for (int i = n - 1; i > 0; --i)
+    std::swap(lane_of[static_cast<size_t>(i)], lane_of[static_cast<size_t>(uniform(o.seed, 88, static_cast<uint64_t>(i)) * (i + 1))]);
+  const double spacing = n > 1 ? std::min(0.8, 2.2 / (n - 1)) : 0.0;
+  const auto lane = [&](int i) { return 2.3 + spacing * lane_of[static_cast<size_t>(i) % lane_of.size()]; };
   for (int i = 0; i < n; ++i) {
     const double side = (i % 2 == 0) ? -1 : 1;  // -1 enters from the left (small u)
     const double lag = 0.04 * i;
-    const double z = 2.3 + 0.8 * (i % 3) + 0.3 * u(i, 0);
+    const double z = lane(i);
     const double spot = (n == 1 ? 0.0 : (i - (n - 1) / 2.0) * (1.6 / n)) + 0.2 * (u(i, 1) - 0.5);
     const double turn = u(i, 2) < 0.5 ? 360 : -360;
     if (o.scenario == "walk-turn") {
@@ -106,9 +114,8 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
       s.wait(lag).walk_to(spot, z, 0.3 + lag).turn_by(turn, 0.7).walk_to(-side * outside(z), z, 1.0);
       scripts.push_back(s);
     } else if (o.scenario == "cross") {
-      const double zc = 2.4 + 0.7 * (i % 3) + 0.2 * u(i, 0);
-      Script s(side * outside(zc), zc, 0);
-      s.wait(lag).walk_to(-side * outside(zc), zc, 0.45 + lag).turn_by(180 * side, 0.55 + lag).walk_to(side * outside(zc), zc, 1.0);
+      Script s(side * outside(z), z, 0);
+      s.wait(lag).walk_to(-side * outside(z), z, 0.45 + lag).turn_by(180 * side, 0.55 + lag).walk_to(side * outside(z), z, 1.0);
       scripts.push_back(s);
     } else if (o.scenario == "group") {
       const double dx = (i - (n - 1) / 2.0) * 0.62, dz = (i % 2) * 0.3 + 0.1 * u(i, 0);
@@ -118,11 +125,14 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
       s.face(yaw_towards(cx - (cx + dx), cz + 0.15 - (cz + dz)), 0.42).wait(0.62);
       s.walk_to(3.0 + dx, 4.0 + dz, 1.0);
       scripts.push_back(s);
-    } else {  // reenter: in, look around, out, away for a while, back in at another spot, turn round
+    } else {  // reenter: in, look around, out, away for a while, back in another lane, turn round
       Script s(side * outside(z), z, 0);
-      const double z2 = 2.2 + 0.8 * ((i + 1) % 3);
+      const double z2 = lane(i + 1);
       s.wait(lag).walk_to(spot, z, 0.2 + lag).turn_by(180, 0.3 + lag).walk_to(side * outside(z), z, 0.45 + lag);
-      s.wait(0.55 + lag).walk_to(-spot * 0.8, z2, 0.75 + lag / 2).turn_by(turn, 1.0);
+      // Out of view: further out, over to the new lane there, back to the edge.
+      s.walk_to(side * (outside(z) + 1.2), z, 0.49 + lag).walk_to(side * (outside(z2) + 1.2), z2, 0.52 + lag);
+      s.walk_to(side * outside(z2), z2, 0.55 + lag);
+      s.walk_to(-spot * 0.8, z2, 0.75 + lag / 2).turn_by(turn, 1.0);
       scripts.push_back(s);
     }
   }
