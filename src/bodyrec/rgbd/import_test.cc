@@ -177,6 +177,23 @@ TEST(Pcd, ReadsAsciiBinaryAndBinaryCompressed) {
   EXPECT_TRUE(contains(error_of("VERSION 0.7\n"), "no DATA line"));
 }
 
+TEST(Pcd, AsciiRgbAsPclWritesIt) {
+  // PCL writes the packed colour of an `rgb` F field as the float with the same bits, e.g. 4.2108e+06.
+  TempDir dir;
+  const uint32_t packed = 200u << 16 | 100u << 8 | 50u;
+  float as_float;
+  std::memcpy(&as_float, &packed, 4);
+  char value[64];
+  std::snprintf(value, sizeof value, "%.9g", static_cast<double>(as_float));
+  std::string text = "VERSION .7\r\nFIELDS x y z rgb\r\nSIZE 4 4 4 4\r\nTYPE F F F F\r\nWIDTH 2\r\nHEIGHT 2\r\n"
+                     "POINTS 4\r\nDATA ascii\r\n";
+  for (int i = 0; i < 4; ++i) text += "0.1 0.2 1.5 " + std::string(value) + "\r\n";
+  write_text(dir / "rgb.pcd", text);
+  const PcdCloud c = read_pcd((dir / "rgb.pcd").string());
+  EXPECT_EQ(c.color.at<cv::Vec3b>(1, 1), cv::Vec3b(50, 100, 200));
+  EXPECT_FLOAT_EQ(c.xyz.at<cv::Vec3f>(1, 1)[2], 1.5f);
+}
+
 TEST(Pcd, ImportWritesRegisteredColourAndDepthInMillimetres) {
   TempDir dir;
   // 20x15 cloud from a pinhole (fx = fy = 20, cx = 9.5, cy = 7), one NaN.

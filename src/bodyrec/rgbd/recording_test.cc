@@ -101,6 +101,35 @@ TEST(Recording, WriteThenReadGivesTheSameFrames) {
   EXPECT_EQ(n, 3);
 }
 
+TEST(Recording, JpegColourAndBodiesOnlyRecordings) {
+  TempDir dir;
+  RecordingMeta m = small_meta();
+  m.color_format = "jpg";
+  {
+    RecordingWriter w((dir / "jpg").string(), m);
+    w.write(sample_frame(m, 2));
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "jpg" / "color" / "000000.jpg"));
+  const RgbdFrame f = RecordingReader((dir / "jpg").string()).read_frame(0);
+  EXPECT_NEAR(f.color.at<cv::Vec3b>(5, 5)[0], 20, 3);  // lossy
+  m.streams = {};
+  m.streams.bodies = true;
+  {
+    RecordingWriter w((dir / "bodies").string(), m);
+    RgbdFrame b;
+    b.bodies = {sample_body(3)};
+    w.write(b);
+    w.write(RgbdFrame{});
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "bodies" / "color"));
+  RecordingReader r((dir / "bodies").string());
+  EXPECT_EQ(r.frame_count(), 2);
+  const RgbdFrame g = r.read_frame(0);
+  EXPECT_TRUE(g.color.empty() && g.depth.empty() && g.body_index.empty() && !g.truth);
+  EXPECT_EQ(g.bodies.at(0).index, 3);
+  EXPECT_TRUE(r.read_frame(1).bodies.empty());
+}
+
 TEST(Recording, WriterRefusesWrongImagesAndANonEmptyDirectory) {
   TempDir dir;
   const RecordingMeta m = small_meta();

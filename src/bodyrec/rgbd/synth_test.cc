@@ -75,6 +75,16 @@ TEST(Synth, TruthAgreesWithBodyIndexDepthAndSkeleton) {
       EXPECT_GT(d / 1000.0, b.joints[idx(Joint::kSpineMid)].position[2] - 0.45);
       EXPECT_LT(d / 1000.0, b.joints[idx(Joint::kSpineMid)].position[2] + 0.05);
     }
+    // Kinect-style hierarchy: a joint's Y axis runs along the bone from its parent.
+    for (Joint j : {Joint::kElbowLeft, Joint::kKneeRight, Joint::kSpineShoulder, Joint::kHipLeft}) {
+      const BodyJoint& bj = b.joints[static_cast<size_t>(idx(j))];
+      cv::Vec3d bone = bj.position - b.joints[static_cast<size_t>(joint_parent(idx(j)))].position;
+      bone /= cv::norm(bone);
+      const cv::Matx33d r = bj.orientation->matrix();
+      EXPECT_NEAR(r(0, 1) * bone[0] + r(1, 1) * bone[1] + r(2, 1) * bone[2], 1.0, 1e-9) << joint_names()[idx(j)];
+    }
+    for (Joint j : {Joint::kHead, Joint::kFootLeft, Joint::kHandTipRight, Joint::kThumbLeft})
+      EXPECT_FALSE(b.joints[static_cast<size_t>(idx(j))].orientation) << "end joint " << joint_names()[idx(j)];
     // Every joint orientation other than end joints is a unit quaternion.
     for (int j = 0; j < kJointCount; ++j)
       if (b.joints[static_cast<size_t>(j)].orientation) {
