@@ -1,0 +1,52 @@
+// Synthetic RGB-D people: a small CPU renderer (ray-cast capsules and ellipsoids with a z-buffer) of
+// articulated Kinect v2 skeletons with per-person proportions, clothing and accessories, walking through
+// a room in scripted scenarios. Frames come out in the recording format with colour, noisy depth, body
+// index, bodies (joints and hierarchical orientations) and ground truth.
+//
+// Conventions: camera space of recording.h (metres, +Y up, u grows with +X); the floor is the plane
+// Y = -camera_height. A person's yaw is 0 when facing the camera and +90 when facing +X; forward is
+// R_y(yaw) (0, 0, -1). SpineBase holds R_y(yaw); every other joint with an orientation holds the body
+// rotation turned (minimally) so that its Y axis runs along the bone from its parent, as Kinect does;
+// end joints (head, feet, hand tips, thumbs) have none, as on Kinect.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bodyrec/rgbd/recording.h"
+
+namespace bodyrec {
+
+struct SynthOptions {
+  int people = 2;                    // 1..6 (Kinect's body limit)
+  uint64_t seed = 1;                 // everything random (looks, paths, noise) derives from it
+  int frames = 150;                  // the scenario is stretched over this many frames
+  std::string scenario = "walk-turn";  // walk-turn, cross, group, reenter
+  int color_width = 960, color_height = 540;  // depth is always Kinect v2's 512x424
+  // Throws UsageError on values out of range or an unknown scenario.
+  void check() const;
+};
+
+const std::vector<std::string>& synth_scenarios();
+
+class Synthesizer {
+ public:
+  explicit Synthesizer(const SynthOptions& options);
+  ~Synthesizer();
+  Synthesizer(const Synthesizer&) = delete;
+  Synthesizer& operator=(const Synthesizer&) = delete;
+
+  // Sensor description (fps 30, Kinect v2 depth intrinsics, scaled colour intrinsics, streams: all).
+  const RecordingMeta& meta() const;
+  // Frame `index` (0 <= index < frames). A pure function of the options and the index: the same
+  // options give identical frames in any order. Not thread-safe (shares scratch buffers).
+  RgbdFrame render(int index);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bodyrec

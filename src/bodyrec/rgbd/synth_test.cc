@@ -1,0 +1,136 @@
+// Synthetic people: determinism, and ground truth that agrees with the images it describes.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/rgbd/synth.h"
+
+namespace bodyrec {
+namespace {
+
+bool same(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+SynthOptions options(const std::string& scenario, int people, uint64_t seed, int frames) {
+  SynthOptions o;
+  o.scenario = scenario;
+  o.people = people;
+  o.seed = seed;
+  o.frames = frames;
+  return o;
+}
+
+TEST(Synth, SameSeedSameFramesInAnyOrderDifferentSeedDifferentFrames) {
+  Synthesizer a(options("cross", 2, 5, 40)), b(options("cross", 2, 5, 40)), c(options("cross", 2, 6, 40));
+  const RgbdFrame late = b.render(25);
+  b.render(3);
+  const RgbdFrame fa = a.render(25), fb = b.render(25), fc = c.render(25);
+  for (const RgbdFrame* f : {&fb, &late}) {
+    EXPECT_TRUE(same(fa.color, f->color));
+    EXPECT_TRUE(same(fa.depth, f->depth));
+    EXPECT_TRUE(same(fa.body_index, f->body_index));
+  }
+  EXPECT_FALSE(same(fa.color, fc.color));
+  EXPECT_FALSE(same(fa.depth, fc.depth));
+}
+
+TEST(Synth, SizesAndStreamsFollowTheMeta) {
+  Synthesizer s(options("walk-turn", 2, 1, 30));
+  const RecordingMeta& m = s.meta();
+  EXPECT_EQ(m.depth.width, 512);
+  EXPECT_EQ(m.depth.height, 424);
+  EXPECT_EQ(m.color.width, 960);
+  EXPECT_EQ(m.color.height, 540);
+  const RgbdFrame f = s.render(12);
+  EXPECT_NO_THROW(validate_frame(f, m, "synth"));
+}
+
+TEST(Synth, TruthAgreesWithBodyIndexDepthAndSkeleton) {
+  // walk-turn: the person stands in the room turning during the middle of the recording.
+  Synthesizer s(options("walk-turn", 1, 3, 60));
+  double min_yaw = 180, max_yaw = -180;
+  for (int i = 24; i <= 40; ++i) {
+    const RgbdFrame f = s.render(i);
+    ASSERT_EQ(f.truth->people.size(), 1u);
+    const PersonTruth& t = f.truth->people[0];
+    ASSERT_EQ(t.body_index, 0) << "frame " << i;
+    EXPECT_EQ(cv::countNonZero(f.body_index == 0), t.visible_pixels);
+    EXPECT_GT(t.visible_fraction, 0.85);
+    EXPECT_GT(t.visible_pixels, 3000);
+    min_yaw = std::min(min_yaw, t.yaw_deg);
+    max_yaw = std::max(max_yaw, t.yaw_deg);
+    ASSERT_EQ(f.bodies.size(), 1u);
+    const Body& b = f.bodies[0];
+    EXPECT_EQ(b.tracking_id, t.tracking_id);
+    // SpineBase orientation carries the yaw (thesis formula valid for |yaw| < 90).
+    if (std::abs(t.yaw_deg) < 80) {
+      EXPECT_NEAR(thesis_yaw_deg(*b.joints[0].orientation), t.yaw_deg, 1e-6);
+    }
+    // Depth at the SpineMid pixel is the body surface a few cm in front of or behind the joint.
+    const auto px = project(s.meta().depth, b.joints[idx(Joint::kSpineMid)].position);
+    const uint16_t d = f.depth.at<uint16_t>(cvRound(px->y), cvRound(px->x));
+    if (d) {  // an arm may swing in front of the torso
+      EXPECT_GT(d / 1000.0, b.joints[idx(Joint::kSpineMid)].position[2] - 0.45);
+      EXPECT_LT(d / 1000.0, b.joints[idx(Joint::kSpineMid)].position[2] + 0.05);
+    }
+    // Kinect-style hierarchy: a joint's Y axis runs along the bone from its parent.
+    for (Joint j : {Joint::kElbowLeft, Joint::kKneeRight, Joint::kSpineShoulder, Joint::kHipLeft}) {
+      const BodyJoint& bj = b.joints[static_cast<size_t>(idx(j))];
+      cv::Vec3d bone = bj.position - b.joints[static_cast<size_t>(joint_parent(idx(j)))].position;
+      bone /= cv::norm(bone);
+      const cv::Matx33d r = bj.orientation->matrix();
+      EXPECT_NEAR(r(0, 1) * bone[0] + r(1, 1) * bone[1] + r(2, 1) * bone[2], 1.0, 1e-9) << joint_names()[idx(j)];
+    }
+    for (Joint j : {Joint::kHead, Joint::kFootLeft, Joint::kHandTipRight, Joint::kThumbLeft})
+      EXPECT_FALSE(b.joints[static_cast<size_t>(idx(j))].orientation) << "end joint " << joint_names()[idx(j)];
+    // Every joint orientation other than end joints is a unit quaternion.
+    for (int j = 0; j < kJointCount; ++j)
+      if (b.joints[static_cast<size_t>(j)].orientation) {
+        EXPECT_NEAR(b.joints[static_cast<size_t>(j)].orientation->norm(), 1.0, 1e-9);
+      }
+  }
+  EXPECT_LT(min_yaw, -150);  // the turn goes through the back view
+  EXPECT_GT(max_yaw, 150);
+  const RgbdFrame start = s.render(0);
+  EXPECT_EQ(start.truth->people[0].body_index, -1);  // not yet in the room
+  EXPECT_TRUE(start.bodies.empty());
+}
+
+TEST(Synth, CrossingOccludesAndReenteringGetsANewTrackingId) {
+  Synthesizer cross(options("cross", 2, 2, 120));
+  double least = 1;
+  for (int i = 0; i < 120; ++i) {
+    const RgbdFrame f = cross.render(i);
+    for (const auto& t : f.truth->people)
+      if (t.body_index >= 0 && std::abs(t.position[0]) < 1.0) least = std::min(least, t.visible_fraction);
+  }
+  EXPECT_LT(least, 0.5);  // someone was mostly hidden behind the other while in the middle
+
+  Synthesizer re(options("reenter", 1, 4, 90));
+  const RgbdFrame first = re.render(15), gone = re.render(45), back = re.render(80);
+  EXPECT_EQ(first.truth->people[0].body_index, 0);
+  EXPECT_EQ(gone.truth->people[0].body_index, -1);
+  EXPECT_EQ(back.truth->people[0].body_index, 0);
+  EXPECT_EQ(first.truth->people[0].identity, back.truth->people[0].identity);
+  EXPECT_NE(first.truth->people[0].tracking_id, back.truth->people[0].tracking_id);
+}
+
+TEST(Synth, PeopleOfOneRecordingLookDifferent) {
+  Synthesizer s(options("group", 4, 9, 30));
+  const RgbdFrame f = s.render(15);
+  ASSERT_EQ(f.truth->people.size(), 4u);
+  for (size_t i = 0; i < 4; ++i)
+    for (size_t j = i + 1; j < 4; ++j) EXPECT_NE(f.truth->people[i].top_bgr, f.truth->people[j].top_bgr);
+}
+
+TEST(Synth, BadOptionsAreUsageErrors) {
+  EXPECT_THROW(options("walk-turn", 7, 1, 10).check(), UsageError);
+  EXPECT_THROW(options("dance", 1, 1, 10).check(), UsageError);
+  EXPECT_THROW(options("cross", 1, 1, 0).check(), UsageError);
+  EXPECT_THROW({ Synthesizer s(options("cross", 0, 1, 10)); }, UsageError);
+}
+
+}  // namespace
+}  // namespace bodyrec
