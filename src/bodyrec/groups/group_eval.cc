@@ -186,10 +186,6 @@ PairModel train_group_model(const std::vector<WalkingScene>& scenes, const Group
   return model;
 }
 
-}  // namespace bodyrec
-
-namespace bodyrec {
-
 double choose_l2(const std::vector<WalkingScene>& scenes, const GroupOptions& options,
                  const std::vector<double>& candidates) {
   if (candidates.empty()) throw UsageError("choose_l2 needs at least one candidate");

@@ -56,8 +56,9 @@ class GroupMembership {
   // A track id listed twice throws UsageError.
   void update(double t_seconds, const std::vector<std::pair<int, cv::Point2d>>& positions);
 
-  // Track id -> group id, for people in a group of 2 or more. A group keeps its id while it keeps most of
-  // its members (the new cluster sharing the most members with an old group inherits its id).
+  // Track id -> group id, for people in a group of 2 or more among those remembered (seen within
+  // forget_after_s). A group keeps its id while it keeps members: old ids go, greedily, to the new
+  // clusters sharing the most members with them; the other clusters get new ids.
   std::map<int, int> group_of() const;
   // The groups (2+ members each, ids sorted), ordered by group id.
   std::vector<std::vector<int>> groups() const;
