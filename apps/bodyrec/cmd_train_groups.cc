@@ -17,14 +17,16 @@ namespace {
 struct TrainGroupsCommand {
   std::vector<std::string> scenes;
   std::string out;
-  double l2 = 0.01;
+  std::vector<double> l2 = {0.01, 0.1, 1, 3};
   GroupCliOptions options;
 
   void run() const {
     const GroupOptions groups = options.resolved();
     std::vector<WalkingScene> loaded;
     for (const auto& dir : scenes) loaded.push_back(read_walking_scene(dir, options.seconds_per_frame));
-    const std::string text = to_text(train_group_model(loaded, groups, l2));
+    const double chosen = choose_l2(loaded, groups, l2);
+    std::fprintf(stderr, "train-groups: L2 penalty %g\n", chosen);
+    const std::string text = to_text(train_group_model(loaded, groups, chosen));
     if (out.empty()) {
       std::printf("%s", text.c_str());
       return;
@@ -42,7 +44,10 @@ void add(CLI::App& app) {
               "--scene ../shared/datasets/walking_groups/UCY/zara01 --out model.txt");
   sub->add_option("--scene", command->scenes, "Scene folder with obsmat.txt and groups.txt (repeat)")->required();
   sub->add_option("--out", command->out, "Model file to write (default: stdout)");
-  sub->add_option("--l2", command->l2, "L2 penalty on the standardised weights")->check(CLI::NonNegativeNumber);
+  sub->add_option("--l2", command->l2,
+                  "L2 penalty on the standardised weights; with several values (and scenes), the one that does best "
+                  "leave-one-scene-out within the training scenes")
+      ->check(CLI::NonNegativeNumber);
   add_group_options(*sub, command->options);
   sub->callback([command] { command->run(); });
 }

@@ -24,8 +24,11 @@ void add_group_options(CLI::App& sub, GroupCliOptions& options) {
   sub.add_option("--half-life", options.groups.evidence_half_life_s,
                  "Pair evidence fades with this half-life in seconds (0: mean over all common time)")
       ->check(CLI::NonNegativeNumber);
+  sub.add_option("--min-moving", options.groups.min_moving_fraction,
+                 "Windows where the two walk for less than this share of the time add no evidence (0: all count)")
+      ->check(CLI::Range(0.0, 1.0));
   sub.add_option("--linkage", options.linkage,
-                 "How pairs form groups: average (group consistency), single (connected pairs), none (pairs alone)");
+                 "How pairs form groups: single (connected components of together pairs), average (clusters whose pairs agree on average), none (each pair alone)");
   sub.add_option("--seconds-per-frame", options.seconds_per_frame,
                  "obsmat frame period; default: estimated from its velocities")
       ->check(CLI::NonNegativeNumber);

@@ -11,14 +11,14 @@ namespace bodyrec::cli {
 
 struct GroupCliOptions {
   GroupOptions groups;
-  std::string linkage = "average";
+  std::string linkage = "single";
   double seconds_per_frame = 0;  // 0 = estimate from obsmat velocities
 
   // GroupOptions with the linkage name resolved and checked (UsageError for an unknown name).
   GroupOptions resolved() const;
 };
 
-// --window, --velocity-span, --half-life, --linkage, --seconds-per-frame.
+// --window, --velocity-span, --half-life, --min-moving, --linkage, --seconds-per-frame.
 void add_group_options(CLI::App& sub, GroupCliOptions& options);
 
 }  // namespace bodyrec::cli

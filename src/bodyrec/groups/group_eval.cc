@@ -119,7 +119,7 @@ std::vector<PairExample> training_examples(const WalkingScene& scene, const Grou
   replay_scene(scene, groups, [&](const std::vector<int>& present) {
     for (size_t i = 0; i < present.size(); ++i)
       for (size_t j = i + 1; j < present.size(); ++j)
-        if (const auto f = groups.window_features(present[i], present[j])) {
+        if (const auto f = groups.window_features(present[i], present[j]); f && groups.counts(*f)) {
           PairExample e;
           e.x = f->values;
           e.together = scene.together(present[i], present[j]);
@@ -162,7 +162,51 @@ PairModel train_group_model(const std::vector<WalkingScene>& scenes, const Group
     }
   }
   model.bias += best_shift;
+
+  // Calibration: one scale on the log-odds (fitted to the pairs' labels by 1-D Newton), so that
+  // pair_probability means something; a positive scale keeps every decision as it is.
+  std::vector<std::pair<double, bool>> pairs;
+  for (size_t s = 0; s < scenes.size(); ++s)
+    for (const auto& [pair, value] : evidence[s])
+      pairs.emplace_back(value + best_shift, scenes[s].together(pair.first, pair.second));
+  double scale = 1;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    double gradient = 0, curvature = 1e-9;
+    for (const auto& [e, together] : pairs) {
+      const double p = 1 / (1 + std::exp(-scale * e));
+      gradient += e * ((together ? 1.0 : 0.0) - p);
+      curvature += e * e * p * (1 - p);
+    }
+    const double step = gradient / curvature;
+    scale = std::clamp(scale + step, 1e-3, 1e3);
+    if (std::abs(step) < 1e-10 * scale) break;
+  }
+  for (double& w : model.weights) w *= scale;
+  model.bias *= scale;
   return model;
+}
+
+double choose_l2(const std::vector<WalkingScene>& scenes, const GroupOptions& options,
+                 const std::vector<double>& candidates) {
+  if (candidates.empty()) throw UsageError("choose_l2 needs at least one candidate");
+  if (scenes.size() < 2 || candidates.size() == 1) return candidates.front();
+  double best = candidates.front(), best_f1 = -1;
+  for (double l2 : candidates) {
+    double f1 = 0;
+    for (size_t out = 0; out < scenes.size(); ++out) {
+      std::vector<WalkingScene> training;
+      for (size_t s = 0; s < scenes.size(); ++s)
+        if (s != out) training.push_back(scenes[s]);
+      GroupOptions with_model = options;
+      with_model.model = std::make_shared<const PairModel>(train_group_model(training, options, l2));
+      f1 += evaluate_learned(scenes[out], replay_evidence(scenes[out], with_model), options.linkage).f1;
+    }
+    if (f1 > best_f1 + 1e-12) {
+      best_f1 = f1;
+      best = l2;
+    }
+  }
+  return best;
 }
 
 }  // namespace bodyrec

@@ -52,7 +52,15 @@ PairScores evaluate_threshold(const WalkingScene& scene, double max_distance_m, 
 std::vector<PairExample> training_examples(const WalkingScene& scene, const GroupOptions& options);
 
 // Trains the pair model on `scenes`: logistic regression on their examples, then the decision threshold
-// (a shift of the bias) that maximises the mean pair F1 over these same scenes with options.linkage.
+// (a shift of the bias) that maximises the mean pair F1 over these same scenes with options.linkage, then
+// one positive scale on the log-odds fitted to the pairs' labels (calibrates pair_probability without
+// changing any decision).
 PairModel train_group_model(const std::vector<WalkingScene>& scenes, const GroupOptions& options, double l2);
+
+// The L2 penalty from `candidates` whose models, trained leave-one-scene-out within `scenes`, score the best
+// mean pair F1 on the scene left out (so the held-out scene of an outer evaluation is never looked at).
+// With one scene or one candidate, the first candidate.
+double choose_l2(const std::vector<WalkingScene>& scenes, const GroupOptions& options,
+                 const std::vector<double>& candidates);
 
 }  // namespace bodyrec

@@ -28,6 +28,8 @@ void GroupOptions::check() const {
   require_positive(forget_after_s, "forget_after_s");
   if (!(evidence_half_life_s >= 0) || !std::isfinite(evidence_half_life_s))
     throw UsageError("group options: evidence_half_life_s must be >= 0, got " + std::to_string(evidence_half_life_s));
+  if (!(min_moving_fraction >= 0 && min_moving_fraction <= 1))
+    throw UsageError("group options: min_moving_fraction must be in [0, 1], got " + std::to_string(min_moving_fraction));
 }
 
 GroupMembership::GroupMembership(GroupOptions options) : options_(std::move(options)) {
@@ -64,7 +66,7 @@ void GroupMembership::update(double t, const std::vector<std::pair<int, cv::Poin
   for (size_t i = 0; i < present.size(); ++i) {
     for (size_t j = i + 1; j < present.size(); ++j) {
       const auto f = pair_features(people_[present[i]], people_[present[j]], t, options_.window_s);
-      if (!f) continue;
+      if (!f || !counts(*f)) continue;
       Evidence& e = evidence_[{present[i], present[j]}];
       const double keep = e.weight > 0 ? std::exp(-decay_rate * (t - e.last_t)) : 0;
       e.sum = keep * e.sum + model_->logit(f->values);
@@ -106,6 +108,10 @@ void GroupMembership::regroup() {
     if (!cluster_id[c]) cluster_id[c] = next_group_id_++;
     for (int id : clusters[c]) group_of_[id] = cluster_id[c];
   }
+}
+
+bool GroupMembership::counts(const PairFeatures& f) const {
+  return f.moving_fraction >= options_.min_moving_fraction;
 }
 
 std::map<int, int> GroupMembership::group_of() const { return group_of_; }

@@ -2,9 +2,10 @@
 // positions (ground plane in metres, or image pixels with a pixels-per-metre scale). Each update, every
 // pair of people seen in it gets the learned pair model's log-odds for the last `window_s` seconds
 // (pair_features.h); a pair's evidence is the mean of those log-odds over the time both were seen
-// (optionally fading with a half-life); groups are clusters of the pair graph (average linkage, so a
-// group needs most of its pairs to agree: A-B and B-C together pull A-C in, one weak link does not chain
-// two groups). The offline evaluation (`bodyrec eval groups`) replays ground truth through this class.
+// (optionally fading with a half-life); groups are the connected components of the pairs with positive
+// evidence (group consistency: A-B and B-C together puts A and C together even when A-C alone is weak;
+// in leave-one-scene-out tests this beat average linkage, which is kept as an option). The offline
+// evaluation (`bodyrec eval groups`) replays ground truth through this class.
 #pragma once
 
 #include <map>
@@ -32,12 +33,16 @@ struct GroupOptions {
   double units_per_metre = 1.0;   // positions are divided by this (pixels per metre for image positions)
   double forget_after_s = 2.0;    // ids not updated for this long are forgotten
   double evidence_half_life_s = 0;  // 0: a pair's evidence is the mean over all its common time
-  GroupLinkage linkage = GroupLinkage::kAverage;
+  // Windows in which both walk (faster than 0.3 m/s) for less than this share of the samples add no
+  // evidence: groups are found from walking together; people standing near each other (a queue, a tram
+  // stop) are not a group by proximity alone. 0 = every window counts.
+  double min_moving_fraction = 0.5;
+  GroupLinkage linkage = GroupLinkage::kSingle;
   // The pair model; null = the built-in model trained on all walking-group scenes.
   std::shared_ptr<const PairModel> model;
 
   // Throws UsageError naming the field when a value is out of range (window_s, velocity_span_s,
-  // units_per_metre, forget_after_s > 0; evidence_half_life_s >= 0).
+  // units_per_metre, forget_after_s > 0; evidence_half_life_s >= 0; min_moving_fraction in [0, 1]).
   void check() const;
 };
 
@@ -51,8 +56,9 @@ class GroupMembership {
   // A track id listed twice throws UsageError.
   void update(double t_seconds, const std::vector<std::pair<int, cv::Point2d>>& positions);
 
-  // Track id -> group id, for people in a group of 2 or more. A group keeps its id while it keeps most of
-  // its members (the new cluster sharing the most members with an old group inherits its id).
+  // Track id -> group id, for people in a group of 2 or more among those remembered (seen within
+  // forget_after_s). A group keeps its id while it keeps members: old ids go, greedily, to the new
+  // clusters sharing the most members with them; the other clusters get new ids.
   std::map<int, int> group_of() const;
   // The groups (2+ members each, ids sorted), ordered by group id.
   std::vector<std::vector<int>> groups() const;
@@ -63,6 +69,8 @@ class GroupMembership {
   std::optional<double> pair_evidence(int a, int b) const;
   // Features of a and b over the window ending at the last update, if both were in it.
   std::optional<PairFeatures> window_features(int a, int b) const;
+  // Whether a window's features add evidence (min_moving_fraction).
+  bool counts(const PairFeatures& f) const;
   // Drops a track and its pairs (e.g. when the tracker deletes it).
   void forget(int id);
 

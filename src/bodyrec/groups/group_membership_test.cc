@@ -1,6 +1,7 @@
 // The online API on hand-made trajectories at the tracker's ~7 fps, with the built-in model.
 #include "bodyrec/groups/group_membership.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -84,6 +85,22 @@ TEST(GroupMembership, ForgetsPeopleWhoLeftAndBoundsMemory) {
   const auto f = g.window_features(1, 1);
   ASSERT_TRUE(f);  // a person paired with itself: only the window's samples remain
   EXPECT_LE(f->samples, 8 * 7 + 1);
+}
+
+TEST(GroupMembership, WithAHalfLifeAPairThatSplitsUpLeavesItsGroup) {
+  GroupOptions options;
+  options.evidence_half_life_s = 2;
+  GroupMembership g(options);
+  // Together for 12 s, then 2 turns north while 1 walks on east.
+  const auto at = [](double t) -> Positions {
+    const double after = std::max(0.0, t - 12);
+    return {{1, {1.3 * t, 0.0}}, {2, {1.3 * (t - after), 0.7 + 1.3 * after}}};
+  };
+  run(g, 0, 12, at);
+  EXPECT_EQ(g.groups(), (std::vector<std::vector<int>>{{1, 2}}));
+  run(g, 12, 8, at);
+  EXPECT_TRUE(g.groups().empty());
+  EXPECT_LT(g.pair_probability(1, 2), 0.5);
 }
 
 TEST(GroupMembership, RejectsTimeGoingBackDuplicateIdsAndBadOptions) {

@@ -18,13 +18,13 @@ struct SceneCase {
   int pairs;           // co-present pairs
   int labelled_pairs;  // of those, together in groups.txt
   double threshold_f1; // measured: median distance <= 1.5 m, median speed difference <= 0.3 m/s
-  double min_learned_f1;
+  double learned_f1;   // measured: built-in model trained on the two other scenes
 };
 
 const SceneCase kScenes[] = {
-    {"walking_groups/ETH/seq_eth", 8908, 2524, 175, 0.6916, 0.0},
-    {"walking_groups/ETH/seq_hotel", 6544, 2025, 47, 0.6866, 0.0},
-    {"walking_groups/UCY/zara01", 5024, 849, 73, 0.8392, 0.0},
+    {"walking_groups/ETH/seq_eth", 8908, 2524, 175, 0.6916, 0.8290},
+    {"walking_groups/ETH/seq_hotel", 6544, 2025, 47, 0.6866, 0.8142},
+    {"walking_groups/UCY/zara01", 5024, 849, 73, 0.8392, 0.9185},
 };
 
 TEST(WalkingGroupsData, ScenesParseWithTheirFramePeriodAndPairCounts) {
@@ -59,10 +59,11 @@ TEST(WalkingGroupsData, LearnedMethodLeaveOneSceneOut) {
     ASSERT_FALSE(options.model->trained_on_scene(scene.name));
     const PairScores s = evaluate_learned(scene, replay_evidence(scene, options), options.linkage);
     std::printf("%s: pair precision %.4f recall %.4f F1 %.4f\n", scene.name.c_str(), s.precision, s.recall, s.f1);
-    EXPECT_GE(s.f1, c.min_learned_f1) << c.path;
+    EXPECT_NEAR(s.f1, c.learned_f1, 1e-4) << c.path;
+    EXPECT_GT(s.f1, c.threshold_f1) << c.path;  // beats the plain rule on every scene
     sum += s.f1;
   }
-  EXPECT_GE(sum / 3, 0.0);
+  EXPECT_GE(sum / 3, 0.85);  // issue 11's target
 }
 
 TEST(WalkingGroupsData, BuiltinModelsAreReproducedByTraining) {
@@ -77,7 +78,7 @@ TEST(WalkingGroupsData, BuiltinModelsAreReproducedByTraining) {
     for (const auto& scene : all)
       if (builtin.trained_on_scene(scene.name)) training.push_back(scene);
     ASSERT_EQ(training.size(), builtin.trained_on.size());
-    const PairModel m = train_group_model(training, options, 0.01);
+    const PairModel m = train_group_model(training, options, builtin.l2);
     // The shipped text has 9 significant digits.
     for (int i = 0; i < kPairFeatureCount; ++i) {
       EXPECT_NEAR(m.weights[i], builtin.weights[i], 1e-6 * (1 + std::abs(builtin.weights[i])));
@@ -86,6 +87,17 @@ TEST(WalkingGroupsData, BuiltinModelsAreReproducedByTraining) {
     }
     EXPECT_NEAR(m.bias, builtin.bias, 1e-6 * (1 + std::abs(builtin.bias)));
   }
+}
+
+TEST(WalkingGroupsData, PenaltyIsChosenWithinTheTrainingScenes) {
+  // The model used to score zara01 was trained on seq_eth and seq_hotel; its L2 penalty came from
+  // train-on-one, score-the-other within those two.
+  std::vector<WalkingScene> training;
+  for (const char* path : {"walking_groups/ETH/seq_eth", "walking_groups/ETH/seq_hotel"}) {
+    BODYREC_REQUIRE_DATA(dir, path);
+    training.push_back(read_walking_scene(dir.string()));
+  }
+  EXPECT_EQ(choose_l2(training, GroupOptions{}, {0.01, 0.1, 1, 3}), builtin_pair_model_for("zara01").l2);
 }
 
 }  // namespace

@@ -24,8 +24,9 @@ double cross(cv::Point2d a, cv::Point2d b) { return a.x * b.y - a.y * b.x; }
 const std::array<const char*, kPairFeatureCount> kPairFeatureNames = {
     "log_median_distance", "log_max_distance",   "distance_std",       "median_velocity_difference",
     "median_speed_difference", "relative_velocity_difference", "log_mean_speed", "heading_agreement",
-    "moving_fraction",     "side_by_side",       "log_entry_difference", "log_common_duration",
-    "distance_change_rate"};
+    "moving_fraction",     "side_by_side",       "log_common_duration",
+    "distance_change_rate", "moving_x_log_distance", "velocity_difference_x_log_distance",
+    "side_by_side_x_log_distance"};
 
 void PersonHistory::add(long step, double t, cv::Point2d position, double velocity_span_s) {
   if (!seen_) {
@@ -116,11 +117,14 @@ std::optional<PairFeatures> pair_features(const PersonHistory& a, const PersonHi
   v[5] = median(rel_diff);
   v[6] = std::log(median(mean_speed) + 0.1);
   v[7] = heading / n;
-  v[8] = moving / n;
+  v[8] = f.moving_fraction = moving / n;
   v[9] = side.empty() ? 0.0 : median(side);
-  v[10] = std::log(std::abs(a.first_seen() - b.first_seen()) + 0.4);
-  v[11] = std::log(duration + 0.4);
-  v[12] = std::abs(dist.back() - dist.front()) / (duration + 0.4);
+  v[10] = std::log(duration + 0.4);
+  v[11] = std::abs(dist.back() - dist.front()) / (duration + 0.4);
+  // Interactions a linear model cannot form itself: closeness matters more when walking, side by side.
+  v[12] = v[8] * v[0];
+  v[13] = v[5] * v[0];
+  v[14] = v[9] * v[0];
   return f;
 }
 

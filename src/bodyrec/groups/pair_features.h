@@ -46,7 +46,7 @@ class PersonHistory {
 };
 
 // Features of a pair over one window; names and order in kPairFeatureNames.
-constexpr int kPairFeatureCount = 13;
+constexpr int kPairFeatureCount = 15;
 using PairFeatureVector = std::array<double, kPairFeatureCount>;
 extern const std::array<const char*, kPairFeatureCount> kPairFeatureNames;
 
@@ -55,6 +55,7 @@ struct PairFeatures {
   int samples = 0;               // common samples (with velocities) in the window
   double median_distance = 0;    // metres (also inside `values`, as a log)
   double median_speed_difference = 0;  // m/s, | |va| - |vb| |
+  double moving_fraction = 0;    // share of samples where both move faster than 0.3 m/s
 };
 
 // Features of a and b over their common samples (same `step`) with has_velocity and t in

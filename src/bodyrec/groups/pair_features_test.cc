@@ -49,8 +49,10 @@ TEST(PairFeatures, SideBySideWalkers) {
   EXPECT_NEAR(v[7], 1.0, 1e-9);            // heading_agreement
   EXPECT_NEAR(v[8], 1.0, 1e-9);            // moving_fraction
   EXPECT_NEAR(v[9], 1.0 / 1.1, 1e-9);      // side_by_side
-  EXPECT_NEAR(v[10], std::log(0.4), 1e-9); // same entry time
-  EXPECT_NEAR(v[11], std::log(3.6 + 0.4), 1e-9);  // samples 2..11 span 3.6 s
+  EXPECT_NEAR(v[10], std::log(3.6 + 0.4), 1e-9);  // samples 2..11 span 3.6 s
+  EXPECT_NEAR(v[11], 0.0, 1e-9);                  // distance_change_rate
+  EXPECT_NEAR(v[12], std::log(1.1), 1e-9);        // moving x log distance
+  EXPECT_NEAR(v[14], std::log(1.1) / 1.1, 1e-9);  // side by side x log distance
 }
 
 TEST(PairFeatures, OneBehindTheOtherAndOpposingWalkers) {
@@ -72,7 +74,7 @@ TEST(PairFeatures, OnlyCommonStepsInsideTheWindowCount) {
   auto f = pair_features(a, late, kAll, kAll);
   ASSERT_TRUE(f);
   EXPECT_EQ(f->samples, 9);  // steps 12..20
-  EXPECT_NEAR(f->values[10], std::log(4.0 + 0.4), 1e-9);  // entered 4 s later
+  EXPECT_NEAR(f->values[10], std::log(3.2 + 0.4), 1e-9);  // 8 intervals of 0.4 s
   f = pair_features(a, late, 0.4 * 19, 1.2);                // t in [6.4, 7.6]: steps 17..20
   ASSERT_TRUE(f);
   EXPECT_EQ(f->samples, 4);

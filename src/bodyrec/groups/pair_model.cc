@@ -61,6 +61,7 @@ std::string to_text(const PairModel& m) {
   std::string s = std::string(kHeader) + "\ntrained_on";
   for (const auto& name : m.trained_on) s += " " + name;
   s += "\nwindow_s" + numbers(&m.window_s, 1) + "\nvelocity_span_s" + numbers(&m.velocity_span_s, 1);
+  s += "\nl2" + numbers(&m.l2, 1);
   s += "\nmean" + numbers(m.mean.data(), kPairFeatureCount);
   s += "\nscale" + numbers(m.scale.data(), kPairFeatureCount);
   s += "\nweights" + numbers(m.weights.data(), kPairFeatureCount);
@@ -89,13 +90,14 @@ PairModel parse_pair_model(const std::string& text, const std::string& where) {
     const std::vector<double> v = parse_numbers(s, at);
     if (key == "window_s") copy_exact(v, &m.window_s, 1, at);
     else if (key == "velocity_span_s") copy_exact(v, &m.velocity_span_s, 1, at);
+    else if (key == "l2") copy_exact(v, &m.l2, 1, at);
     else if (key == "mean") copy_exact(v, m.mean.data(), kPairFeatureCount, at);
     else if (key == "scale") copy_exact(v, m.scale.data(), kPairFeatureCount, at);
     else if (key == "weights") copy_exact(v, m.weights.data(), kPairFeatureCount, at);
     else if (key == "bias") copy_exact(v, &m.bias, 1, at);
     else throw InputError(at + ": unknown key");
   }
-  for (const char* key : {"trained_on", "window_s", "velocity_span_s", "mean", "scale", "weights", "bias"})
+  for (const char* key : {"trained_on", "window_s", "velocity_span_s", "l2", "mean", "scale", "weights", "bias"})
     if (!seen[key]) throw InputError(where + ": missing '" + key + "'");
   for (int i = 0; i < kPairFeatureCount; ++i)
     if (!(m.scale[i] > 0)) throw InputError(where + ": scale of feature " + std::to_string(i) + " is not > 0");
@@ -162,6 +164,7 @@ PairModel train_pair_model(const std::vector<PairExample>& examples, double l2) 
   }
   for (int i = 0; i < k; ++i) m.weights[i] = beta.at<double>(i);
   m.bias = beta.at<double>(k);
+  m.l2 = l2;
   return m;
 }
 

@@ -14,6 +14,7 @@ struct PairModel {
   std::vector<std::string> trained_on;  // scene names, e.g. {"seq_hotel", "zara01"}
   double window_s = 0;                  // feature window it was trained with (GroupOptions::window_s)
   double velocity_span_s = 0;           // and velocity span
+  double l2 = 0;                        // and L2 penalty (recorded so training can be reproduced)
   PairFeatureVector mean{};             // standardisation: (x - mean) / scale
   PairFeatureVector scale{};
   PairFeatureVector weights{};
@@ -24,7 +25,7 @@ struct PairModel {
   bool trained_on_scene(const std::string& scene) const;
 };
 
-// Text form: "bodyrec-pair-model 1" then lines `key values...` (trained_on, window_s, velocity_span_s,
+// Text form: "bodyrec-pair-model 1" then lines `key values...` (trained_on, window_s, velocity_span_s, l2,
 // mean, scale, weights, bias), numbers with 9 significant digits.
 std::string to_text(const PairModel& model);
 // Throws InputError naming `where` and the line for a wrong header, unknown key, missing key or a value
@@ -39,7 +40,8 @@ struct PairExample {
 };
 
 // Fits weights and bias by Newton's method (deterministic). `l2` penalises the standardised weights.
-// REQUIRES examples of both classes. Leaves trained_on/window/span for the caller.
+// REQUIRES examples of both classes (else ProcessingError). Leaves trained_on, window_s and
+// velocity_span_s for the caller.
 PairModel train_pair_model(const std::vector<PairExample>& examples, double l2);
 
 // Models shipped in the program: one trained on all three walking-group scenes and one per held-out scene.

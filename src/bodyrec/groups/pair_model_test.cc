@@ -48,7 +48,7 @@ TEST(PairModel, TextRoundTripAndBrokenText) {
   std::string text = to_text(m);
   text.replace(text.find("bias"), 4, "bais");
   e = input_error([&] { parse_pair_model(text, "f.txt"); });
-  EXPECT_TRUE(contains(e, "f.txt:8: bais: unknown key")) << e;
+  EXPECT_TRUE(contains(e, "f.txt:9: bais: unknown key")) << e;
   text = to_text(m);
   text.replace(text.find("window_s 8"), 10, "window_s 8 9");
   e = input_error([&] { parse_pair_model(text, "f.txt"); });
