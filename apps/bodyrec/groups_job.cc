@@ -119,9 +119,6 @@ void add_groups_options(CLI::App& sub, GroupsJobOptions& o) {
                  "Without a ground plane: image scale (0 = from the first boxes, a person being 1.7 m tall)")
       ->capture_default_str();
   add_group_options(sub, o.membership);
-  sub.add_flag("--use-entry-times", p.use_entry_times,
-               "groups: let the pair model compare when two tracks were first seen (off by default: track "
-               "breaks make those times unreliable in video)");
   sub.add_option("--motion-threshold", p.motion.threshold, "Three-frame difference threshold (thesis: 35)")
       ->capture_default_str();
   sub.add_option("--motion-max-deviation", p.motion.max_deviation,

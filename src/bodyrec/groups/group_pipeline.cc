@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -120,12 +119,6 @@ std::map<int, int> GroupPipeline::assign_groups(GroupFrame& out, double t) {
     }
     GroupOptions o = options_.membership;
     o.units_per_metre = pixels_per_metre_;
-    if (!options_.use_entry_times) {
-      auto model = std::make_shared<PairModel>(o.model ? *o.model : builtin_pair_model_for(""));
-      const auto entry = std::find(kPairFeatureNames.begin(), kPairFeatureNames.end(), std::string("log_entry_difference"));
-      if (entry != kPairFeatureNames.end()) model->weights[static_cast<size_t>(entry - kPairFeatureNames.begin())] = 0;
-      o.model = model;
-    }
     membership_.emplace(o);
   }
   std::vector<std::pair<int, cv::Point2d>> positions;

@@ -38,10 +38,6 @@ struct GroupPipelineOptions {
   LeaderTrackerOptions leader;
   LeaderDirectionOptions direction;
   double pixels_per_metre = 0;   // without a ground plane; 0 = from the first boxes (a person is 1.7 m)
-  // The pair model's "entered together" feature compares when two ids were first seen. A tracker that
-  // breaks a track and starts a new id makes that time meaningless, so by default the video pipeline
-  // leaves the feature out (its weight set to zero, i.e. the training mean).
-  bool use_entry_times = false;
   void check() const;            // throws UsageError naming the option
 };
 
