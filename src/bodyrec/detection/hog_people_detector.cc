@@ -124,13 +124,27 @@ std::vector<Detection> HogPeopleDetector::detect(const cv::Mat& frame) {
       if (r.area() > 0) regions.push_back(r);
     }
   }
+  // Regions are searched in parallel, largest first, each on one thread (HOG's own parallelism over
+  // pyramid levels is too fine-grained for small regions to keep two cores busy). Results are collected
+  // per region and joined in region order, so the output does not depend on thread timing.
+  std::vector<std::vector<Detection>> found(regions.size());
+  std::vector<size_t> order(regions.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return regions[a].area() > regions[b].area(); });
+  auto search = [&](const cv::Range& range) {
+    for (int k = range.start; k < range.end; ++k) {
+      const size_t i = order[static_cast<size_t>(k)];
+      found[i] = detect_windows(frame, regions[i]);
+    }
+  };
+  if (regions.size() > 1) cv::parallel_for_(cv::Range(0, static_cast<int>(regions.size())), search);
+  else search(cv::Range(0, static_cast<int>(regions.size())));
   std::vector<Detection> detections;
-  for (const cv::Rect& region : regions) {
-    for (Detection& d : detect_windows(frame, region)) {
+  for (auto& region_detections : found)
+    for (Detection& d : region_detections) {
       d.box = clip_box(body_box(d.box), frame.size());
       if (d.box.area() > 0) detections.push_back(d);
     }
-  }
   return finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
 }
 

@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 namespace {
@@ -31,10 +32,9 @@ std::string numbers(const double* v, int n) {
 std::vector<double> parse_numbers(std::istringstream& s, const std::string& where) {
   std::vector<double> v;
   for (std::string field; s >> field;) {
-    char* end = nullptr;
-    const double x = std::strtod(field.c_str(), &end);
-    if (*end != '\0' || !std::isfinite(x)) throw InputError(where + ": not a finite number: '" + field + "'");
-    v.push_back(x);
+    const auto x = parse_double(field);
+    if (!x || !std::isfinite(*x)) throw InputError(where + ": not a finite number: '" + field + "'");
+    v.push_back(*x);
   }
   return v;
 }

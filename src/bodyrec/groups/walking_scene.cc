@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 namespace {
@@ -20,17 +21,9 @@ std::ifstream open_text(const std::string& path) {
   return in;
 }
 
-double parse_finite(const std::string& text, const std::string& where, const char* field) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw InputError(where + ": field '" + field + "' is not a finite number: '" + text + "'");
-  return v;
-}
-
 // obsmat stores integers as floats ("7.8000000e+02"); they must still be whole and non-negative.
 int parse_index(const std::string& text, const std::string& where, const char* field) {
-  const double v = parse_finite(text, where, field);
+  const double v = parse_finite_field(text, where, field);
   if (v < 0 || v != std::floor(v) || v > 1e9)
     throw InputError(where + ": field '" + field + "' is not a non-negative integer: '" + text + "'");
   return static_cast<int>(v);
@@ -54,7 +47,7 @@ std::vector<ObsmatRow> read_obsmat(const std::string& path) {
       throw InputError(where + ": expected 8 fields (frame ped pos_x pos_z pos_y v_x v_z v_y), got " +
                        std::to_string(f.size()));
     double v[8];
-    for (int i = 2; i < 8; ++i) v[i] = parse_finite(f[i], where, kFields[i]);
+    for (int i = 2; i < 8; ++i) v[i] = parse_finite_field(f[i], where, kFields[i]);
     ObsmatRow r;
     r.frame = parse_index(f[0], where, kFields[0]);
     r.person = parse_index(f[1], where, kFields[1]);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 #include "bodyrec/io/xml_document.h"
 
 namespace bodyrec {
@@ -75,16 +76,10 @@ std::unique_ptr<GroundPlane> read_homography(const std::string& path) {
     std::istringstream fields(line);
     std::string field;
     while (fields >> field) {
-      size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(field, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != field.size() || !std::isfinite(v))
+      const auto v = parse_double(field);
+      if (!v || !std::isfinite(*v))
         throw InputError(path + ":" + std::to_string(line_no) + ": '" + field + "' is not a finite number");
-      values.push_back(v);
+      values.push_back(*v);
     }
   }
   if (values.size() != 9)

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 #include "bodyrec/io/xml_document.h"
 
 namespace bodyrec {
@@ -34,14 +35,6 @@ std::vector<std::string> split_fields(const std::string& line) {
     fields.push_back(field);
   }
   return fields;
-}
-
-double parse_number(const std::string& text, const std::string& where, const char* field) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw InputError(where + ": field '" + field + "' is not a finite number: '" + text + "'");
-  return v;
 }
 
 }  // namespace
@@ -95,23 +88,23 @@ GroundTruth read_mot(const std::string& path, bool is_ground_truth) {
       throw InputError(where + ": expected at least 6 comma-separated fields (frame,id,x,y,w,h), got " +
                        std::to_string(f.size()));
     LabelledBox b;
-    const double frame = parse_number(f[0], where, "frame");
+    const double frame = parse_finite_field(f[0], where, "frame");
     if (frame < 1 || frame != std::floor(frame) || frame > 1e8)
       throw InputError(where + ": field 'frame' must be an integer >= 1 (MOTChallenge frames are 1-based), got '" +
                        f[0] + "'");
     b.frame = static_cast<int>(frame) - 1;
-    const double id = parse_number(f[1], where, "id");
+    const double id = parse_finite_field(f[1], where, "id");
     if (id != std::floor(id) || std::fabs(id) > 1e9)
       throw InputError(where + ": field 'id' must be an integer, got '" + f[1] + "'");
     b.id = static_cast<int>(id);
-    b.box = Box(parse_number(f[2], where, "x"), parse_number(f[3], where, "y"), parse_number(f[4], where, "w"),
-                parse_number(f[5], where, "h"));
+    b.box = Box(parse_finite_field(f[2], where, "x"), parse_finite_field(f[3], where, "y"), parse_finite_field(f[4], where, "w"),
+                parse_finite_field(f[5], where, "h"));
     check_size(b, where);
-    if (f.size() > 6) b.score = parse_number(f[6], where, "conf");
+    if (f.size() > 6) b.score = parse_finite_field(f[6], where, "conf");
     if (is_ground_truth) {
       const bool zero_conf = f.size() > 6 && b.score == 0;
-      const bool other_class = f.size() > 7 && parse_number(f[7], where, "class") != 1 &&
-                               parse_number(f[7], where, "class") != -1;
+      const bool other_class = f.size() > 7 && parse_finite_field(f[7], where, "class") != 1 &&
+                               parse_finite_field(f[7], where, "class") != -1;
       b.ignore = zero_conf || other_class;
       b.score = 1.0;
     }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 
@@ -27,15 +28,10 @@ std::vector<RoleLabel> read_roles_csv(const std::string& path) {
       throw InputError(where + "expected 6 fields (frame,x,y,w,h,role), found " + std::to_string(fields.size()));
     double v[5];
     for (int i = 0; i < 5; ++i) {
-      size_t used = 0;
-      try {
-        v[i] = std::stod(fields[i], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      while (used < fields[i].size() && (fields[i][used] == ' ' || fields[i][used] == '\t')) ++used;
-      if (used == 0 || used != fields[i].size() || !std::isfinite(v[i]))
+      const auto parsed = parse_double(fields[i]);
+      if (!parsed || !std::isfinite(*parsed))
         throw InputError(where + "field '" + kFields[i] + "' is not a number: '" + fields[i] + "'");
+      v[i] = *parsed;
     }
     if (v[0] < 0 || v[0] != std::floor(v[0]) || v[0] > 1e9)
       throw InputError(where + "field 'frame' must be a non-negative integer");

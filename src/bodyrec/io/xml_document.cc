@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 namespace {
@@ -39,13 +40,10 @@ double required_number(const pugi::xml_node& node, const char* name, const std::
   const pugi::xml_attribute attr = node.attribute(name);
   if (!attr) throw InputError(where + ": missing attribute '" + name + "'");
   const char* text = attr.value();
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text, &end);
-  while (end && (*end == ' ' || *end == '\t')) ++end;
-  if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+  const auto value = parse_double(text);
+  if (!value || !std::isfinite(*value))
     throw InputError(where + ": attribute '" + name + "' is not a finite number: '" + text + "'");
-  return value;
+  return *value;
 }
 
 int required_int(const pugi::xml_node& node, const char* name, const std::string& where) {

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 namespace {
@@ -30,25 +31,14 @@ class Lines {
     return tokens;
   }
   double number(const std::string& t, const char* what) {
-    size_t used = 0;
-    double d = 0;
-    try {
-      d = std::stod(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != t.size() || !std::isfinite(d)) fail(std::string(what) + ": not a number: \"" + t + "\"");
-    return d;
+    const auto d = parse_double(t);
+    if (!d || !std::isfinite(*d)) fail(std::string(what) + ": not a number: \"" + t + "\"");
+    return *d;
   }
   long long integer(const std::string& t, const char* what, long long lo, long long hi) {
-    size_t used = 0;
-    long long v = 0;
-    try {
-      v = std::stoll(t, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != t.size()) fail(std::string(what) + ": not an integer: \"" + t + "\"");
+    const auto parsed = parse_integer(t);
+    if (!parsed) fail(std::string(what) + ": not an integer: \"" + t + "\"");
+    const long long v = *parsed;
     if (v < lo || v > hi) fail(std::string(what) + ": " + t + " outside " + std::to_string(lo) + ".." + std::to_string(hi));
     return v;
   }

@@ -10,6 +10,7 @@
 #include <liblzf/lzf.h>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 
 namespace bodyrec {
 namespace {
@@ -33,14 +34,8 @@ struct Header {
 [[noreturn]] void fail(const std::string& file, const std::string& what) { throw InputError(file + ": " + what); }
 
 int to_int(const std::string& file, int line, const std::string& t) {
-  size_t used = 0;
-  long long v = -1;
-  try {
-    v = std::stoll(t, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != t.size() || v < 0 || v > std::numeric_limits<int>::max())
+  const long long v = parse_integer(t).value_or(-1);
+  if (v < 0 || v > std::numeric_limits<int>::max())
     fail(file, "header line " + std::to_string(line) + ": not a non-negative integer: \"" + t + "\"");
   return static_cast<int>(v);
 }
@@ -183,13 +178,9 @@ PcdCloud read_pcd(const std::string& file) {
         const bool is_nan = t == "nan" || t == "NaN" || t == "-nan";
         double d = std::numeric_limits<double>::quiet_NaN();
         if (!is_nan) {
-          size_t used = 0;
-          try {
-            d = std::stod(t, &used);
-          } catch (const std::exception&) {
-            used = 0;
-          }
-          if (used != t.size()) fail(file, "ascii point " + std::to_string(i) + ": field " + f.name + ": not a number: \"" + t + "\"");
+          const auto parsed = parse_double(t);
+          if (parsed) d = *parsed;
+          else fail(file, "ascii point " + std::to_string(i) + ": field " + f.name + ": not a number: \"" + t + "\"");
         }
         if (&f == &fx) xyz[i][0] = static_cast<float>(d);
         if (&f == &fy) xyz[i][1] = static_cast<float>(d);
