@@ -80,8 +80,22 @@ void draw(cv::Mat& canvas, const Frame& frame, const GroupFrame& g) {
   std::string caption = "frame " + std::to_string(frame.index) + "  people " + std::to_string(g.people.size()) +
                         "  leaders " + std::to_string(g.leaders.size());
   if (lost) caption += "  (" + std::to_string(lost) + " lost)";
-  caption += "   leader blue, member green, non-member red, potential orange, motion yellow";
   draw_caption(canvas, caption);
+  // Legend along the bottom edge, each word in its colour.
+  const std::pair<const char*, cv::Scalar> legend[] = {{"leader", colors::kBlue},
+                                                       {"member", colors::kGreen},
+                                                       {"non-member", colors::kRed},
+                                                       {"potential", colors::kOrange},
+                                                       {"motion", cv::Scalar(0, 160, 200)}};
+  const int height = 20, y = canvas.rows - height;
+  if (y <= 0) return;
+  cv::rectangle(canvas, cv::Rect(0, y, canvas.cols, height), cv::Scalar(200, 200, 200), cv::FILLED);
+  int x = 6;
+  for (const auto& [word, color] : legend) {
+    cv::putText(canvas, word, cv::Point(x, y + 14), cv::FONT_HERSHEY_SIMPLEX, 0.45, color, 1, cv::LINE_AA);
+    int baseline = 0;
+    x += cv::getTextSize(word, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &baseline).width + 14;
+  }
 }
 
 }  // namespace
