@@ -38,6 +38,14 @@ void BM_HogDefaultPreset(benchmark::State& state) {
   run(state, detector);
 }
 
+// The default preset without scene-adaptive scales (every region searched at all 13 levels).
+void BM_HogDefaultPresetFixedScales(benchmark::State& state) {
+  bodyrec::HogOptions options = bodyrec::hog_preset("default");
+  options.adapt_after = 0;
+  bodyrec::HogPeopleDetector detector(options);
+  run(state, detector);
+}
+
 void BM_ThesisAuthorFhog(benchmark::State& state) {
   const char* env = std::getenv("BODYREC_DATA");
   const std::filesystem::path model =
@@ -54,6 +62,7 @@ void BM_ThesisAuthorFhog(benchmark::State& state) {
 
 BENCHMARK(BM_HogThesisPreset)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_HogDefaultPreset)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK(BM_HogDefaultPresetFixedScales)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_ThesisAuthorFhog)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 
 }  // namespace

@@ -44,7 +44,10 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   o.o_group = sub.add_option("--group-threshold", o.group_threshold, "HOG: grouping threshold" + p);
   o.o_resize = sub.add_option("--resize", o.resize, "HOG: image scale factor before detection" + p);
   o.o_levels = sub.add_option("--levels", o.levels, "HOG: pyramid levels searched" + p);
-  for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels})
+  o.o_adapt = sub.add_option("--adapt-after", o.adapt_after,
+                             "HOG with motion regions: after N confident detections, search each region only at "
+                             "the person heights the scene shows there (0 = off)" + p);
+  for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels, o.o_adapt})
     opt->default_str("preset");
   sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
   sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
@@ -71,6 +74,8 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   if (given(o.o_group)) h.group_threshold = o.group_threshold;
   if (given(o.o_resize)) h.resize = o.resize;
   if (given(o.o_levels)) h.levels = o.levels;
+  if (given(o.o_resize) || given(o.o_levels)) h.min_height = h.max_height = 0;  // a custom range: no adaptation
+  if (given(o.o_adapt)) h.adapt_after = o.adapt_after;
   if (o.roi.size() == 4) h.roi = cv::Rect(o.roi[0], o.roi[1], o.roi[2], o.roi[3]);
   if (o.motion != "preset") h.motion_roi = o.motion == "on";
   else if (!consecutive_frames) h.motion_roi = false;

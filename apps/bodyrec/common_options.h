@@ -32,12 +32,13 @@ struct DetectorOptions {
   double fhog_upsample = 1.0, fhog_threshold = 0.0;
   std::string hog_model = "default";
   double hit_threshold = 0, scale = 0, resize = 0, nms_iou = 0.4;
-  int win_stride = 0, padding = 0, group_threshold = 0, levels = 0;
+  int win_stride = 0, padding = 0, group_threshold = 0, levels = 0, adapt_after = 0;
   std::vector<int> roi;
   std::string motion = "preset";  // "on", "off" or "preset"
   std::vector<CLI::Option*> given;  // filled by add_detector_options
   CLI::Option *o_hit = nullptr, *o_stride = nullptr, *o_padding = nullptr, *o_scale = nullptr,
-              *o_group = nullptr, *o_resize = nullptr, *o_levels = nullptr, *o_hog_model = nullptr;
+              *o_group = nullptr, *o_resize = nullptr, *o_levels = nullptr, *o_hog_model = nullptr,
+              *o_adapt = nullptr;
 };
 
 void add_detector_options(CLI::App& sub, DetectorOptions& options);

@@ -38,6 +38,8 @@ void HogOptions::set_height_range(double min_height, double max_height) {
   const double window_height = (model == "daimler" ? 96.0 : 128.0) * body_height;
   resize = window_height / min_height;
   levels = static_cast<int>(std::ceil(std::log(max_height / min_height) / std::log(scale))) + 1;
+  this->min_height = min_height;
+  this->max_height = max_height;
 }
 
 void HogOptions::check() const {
@@ -51,6 +53,8 @@ void HogOptions::check() const {
   if (levels < 1) throw UsageError("--levels must be >= 1");
   if (!(nms_iou > 0 && nms_iou <= 1)) throw UsageError("--nms-iou must be in (0, 1]");
   if (roi.width < 0 || roi.height < 0) throw UsageError("--roi must have a positive size");
+  if (adapt_after < 0) throw UsageError("--adapt-after must be >= 0");
+  if (!(adapt_margin >= 0 && adapt_margin < 1)) throw UsageError("--adapt-margin must be in [0, 1)");
   motion.check();
 }
 
@@ -64,6 +68,7 @@ HogOptions hog_preset(const std::string& name) {
     o.set_height_range(60, 140);
     o.motion_roi = true;
     o.motion.warmup_frames = 1;  // the first frame has no motion yet: search all of it
+    o.adapt_after = 40;
     return o;
   }
   throw UsageError("unknown preset '" + name + "' (expected 'default' or 'thesis')");
@@ -71,14 +76,37 @@ HogOptions hog_preset(const std::string& name) {
 
 HogPeopleDetector::HogPeopleDetector(const HogOptions& options) : options_(options) {
   options_.check();
-  if (options_.model == "daimler") {
-    hog_ = cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
-    hog_.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
-  } else {
-    hog_.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
-  }
-  hog_.nlevels = options_.levels;
+  hog_for(options_.levels);
   if (options_.motion_roi) motion_.emplace(options_.motion);
+  if (options_.motion_roi && options_.adapt_after > 0 && options_.min_height > 0)
+    heights_.emplace(options_.adapt_after);
+}
+
+const cv::HOGDescriptor& HogPeopleDetector::hog_for(int levels) const {
+  auto& hogs = const_cast<std::map<int, cv::HOGDescriptor>&>(hogs_);  // a cache; filled before parallel use
+  auto it = hogs.find(levels);
+  if (it != hogs.end()) return it->second;
+  cv::HOGDescriptor hog;
+  if (options_.model == "daimler") {
+    hog = cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
+    hog.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
+  } else {
+    hog.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
+  }
+  hog.nlevels = levels;
+  return hogs.emplace(levels, hog).first->second;
+}
+
+HogPeopleDetector::Search HogPeopleDetector::plan(const cv::Rect& region) const {
+  const Search configured{options_.resize, options_.levels};
+  if (!heights_) return configured;
+  const auto range = heights_->height_range(region.y, region.y + region.height, options_.adapt_margin);
+  if (!range) return configured;
+  const double lo = std::max(range->first, options_.min_height), hi = std::min(range->second, options_.max_height);
+  if (!(hi > lo)) return configured;  // the fit says nobody fits here; stay safe
+  const double window_height = hog_for(options_.levels).winSize.height * options_.body_height;
+  return {window_height / lo,
+          static_cast<int>(std::ceil(std::log(hi / lo) / std::log(options_.scale))) + 1};
 }
 
 Box HogPeopleDetector::body_box(const Box& w) const {
@@ -88,11 +116,17 @@ Box HogPeopleDetector::body_box(const Box& w) const {
 }
 
 std::vector<Detection> HogPeopleDetector::detect_windows(const cv::Mat& frame, const cv::Rect& region) {
-  const double r = options_.resize;
+  return search(frame, region, {options_.resize, options_.levels});
+}
+
+std::vector<Detection> HogPeopleDetector::search(const cv::Mat& frame, const cv::Rect& region,
+                                                 const Search& how) const {
+  const cv::HOGDescriptor& hog = hog_for(how.levels);
+  const double r = how.resize;
   cv::Mat image;
   cv::resize(frame(region), image, cv::Size(), r, r, r > 1 ? cv::INTER_LINEAR : cv::INTER_AREA);
   // detectMultiScale needs at least one window; pad small regions with border pixels.
-  const cv::Size win = hog_.winSize;
+  const cv::Size win = hog.winSize;
   const int pad_x = std::max(0, win.width - image.cols), pad_y = std::max(0, win.height - image.rows);
   if (pad_x || pad_y) cv::copyMakeBorder(image, image, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
   std::vector<cv::Rect> found;
@@ -100,11 +134,11 @@ std::vector<Detection> HogPeopleDetector::detect_windows(const cv::Mat& frame, c
   // Raw windows first, grouped afterwards in a fixed order: detectMultiScale collects the pyramid levels
   // from parallel threads in varying order, and its grouping averages boxes in that order, so its own
   // grouping gives slightly different boxes from run to run.
-  hog_.detectMultiScale(image, found, weights, options_.hit_threshold,
+  hog.detectMultiScale(image, found, weights, options_.hit_threshold,
                         cv::Size(options_.win_stride, options_.win_stride),
                         cv::Size(options_.padding, options_.padding), options_.scale, 0);
   sort_windows(found, weights);
-  if (options_.group_threshold > 0) hog_.groupRectangles(found, weights, options_.group_threshold, 0.2);
+  if (options_.group_threshold > 0) hog.groupRectangles(found, weights, options_.group_threshold, 0.2);
   std::vector<Detection> out;
   for (size_t i = 0; i < found.size(); ++i) {
     const Box b = scale_box(Box(found[i]), 1.0 / r);
@@ -127,25 +161,34 @@ std::vector<Detection> HogPeopleDetector::detect(const cv::Mat& frame) {
   // Regions are searched in parallel, largest first, each on one thread (HOG's own parallelism over
   // pyramid levels is too fine-grained for small regions to keep two cores busy). Results are collected
   // per region and joined in region order, so the output does not depend on thread timing.
+  std::vector<Search> plans;
+  for (const cv::Rect& region : regions) {
+    plans.push_back(plan(region));
+    hog_for(plans.back().levels);  // create descriptors before the threads share the cache
+  }
   std::vector<std::vector<Detection>> found(regions.size());
   std::vector<size_t> order(regions.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return regions[a].area() > regions[b].area(); });
-  auto search = [&](const cv::Range& range) {
+  auto run_range = [&](const cv::Range& range) {
     for (int k = range.start; k < range.end; ++k) {
       const size_t i = order[static_cast<size_t>(k)];
-      found[i] = detect_windows(frame, regions[i]);
+      found[i] = search(frame, regions[i], plans[i]);
     }
   };
-  if (regions.size() > 1) cv::parallel_for_(cv::Range(0, static_cast<int>(regions.size())), search);
-  else search(cv::Range(0, static_cast<int>(regions.size())));
+  if (regions.size() > 1) cv::parallel_for_(cv::Range(0, static_cast<int>(regions.size())), run_range);
+  else run_range(cv::Range(0, static_cast<int>(regions.size())));
   std::vector<Detection> detections;
   for (auto& region_detections : found)
     for (Detection& d : region_detections) {
       d.box = clip_box(body_box(d.box), frame.size());
       if (d.box.area() > 0) detections.push_back(d);
     }
-  return finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
+  auto result = finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
+  if (heights_)
+    for (const Detection& d : result)
+      if (d.score >= options_.adapt_min_score) heights_->add(d.box.y + d.box.height, d.box.height);
+  return result;
 }
 
 std::string HogPeopleDetector::describe() const {
@@ -153,7 +196,7 @@ std::string HogPeopleDetector::describe() const {
   s << "OpenCV HOG (" << options_.model << " SVM, hit " << options_.hit_threshold << ", stride "
     << options_.win_stride << ", padding " << options_.padding << ", scale " << options_.scale << ", group "
     << options_.group_threshold << ", resize " << options_.resize << ", levels " << options_.levels
-    << (options_.motion_roi ? ", motion regions" : "") << ")";
+    << (options_.motion_roi ? ", motion regions" : "") << (heights_ ? ", scene-adaptive scales" : "") << ")";
   return s.str();
 }
 

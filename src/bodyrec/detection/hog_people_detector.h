@@ -4,6 +4,7 @@
 // body (the PETS/MOT convention).
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "bodyrec/detection/motion_regions.h"
 #include "bodyrec/detection/people_detector.h"
+#include "bodyrec/detection/person_height_model.h"
 
 namespace bodyrec {
 
@@ -28,6 +30,13 @@ struct HogOptions {
   bool motion_roi = false;        // search only around moving regions (see MotionRegions)
   MotionRegionOptions motion;
   double nms_iou = 0.4;           // our NMS after grouping
+  // Scene-adaptive scales (with motion regions, for a fixed camera): after `adapt_after` confident
+  // detections, a PersonHeightModel limits each region's search to the heights people can have there
+  // (within adapt_margin of the fitted line, inside [min_height, max_height]). 0 = off.
+  int adapt_after = 0;
+  double adapt_margin = 0.35;
+  double adapt_min_score = 0.5;   // detections at least this confident teach the model
+  double min_height = 0, max_height = 0;  // set by set_height_range; 0 = not set (no adaptation)
   // Where the body sits in the detector window, as fractions of the window (measured on PETS boxes).
   double body_width = 0.50, body_height = 0.75, body_center_x = 0.52, body_center_y = 0.48;
 
@@ -47,16 +56,27 @@ class HogPeopleDetector : public PeopleDetector {
   std::vector<Detection> detect(const cv::Mat& frame) override;
   std::string describe() const override;
 
-  // Detector windows (frame pixels) and scores before shrinking to the body and before our NMS.
+  // Detector windows (frame pixels) and scores before shrinking to the body and before our NMS, with the
+  // configured resize factor and pyramid levels.
   std::vector<Detection> detect_windows(const cv::Mat& frame, const cv::Rect& region);
 
   // The body box inside a detector window.
   Box body_box(const Box& window) const;
 
  private:
+  struct Search {
+    double resize;
+    int levels;
+  };
+  // How to search `region`: the configured scales, or the adaptive ones once the height model is ready.
+  Search plan(const cv::Rect& region) const;
+  std::vector<Detection> search(const cv::Mat& frame, const cv::Rect& region, const Search& how) const;
+  const cv::HOGDescriptor& hog_for(int levels) const;
+
   HogOptions options_;
-  cv::HOGDescriptor hog_;
+  std::map<int, cv::HOGDescriptor> hogs_;  // by pyramid levels (nlevels is a member of the descriptor)
   std::optional<MotionRegions> motion_;
+  std::optional<PersonHeightModel> heights_;
 };
 
 }  // namespace bodyrec
