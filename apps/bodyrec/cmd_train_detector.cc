@@ -38,15 +38,16 @@ struct TrainDetectorCommand {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::printf("window        %dx%d (target size %d, median box aspect)\n", report.window.width,
                 report.window.height, options.target_size);
-    std::printf("boxes         %d trained on, %d smaller than the window ignored%s\n", report.boxes,
-                report.too_small, options.flip ? " (before adding mirrored copies)" : "");
+    std::printf("boxes         %d trained on, %d the window cannot match ignored%s\n", report.boxes,
+                report.unreachable, options.flip ? " (before adding mirrored copies)" : "");
     std::printf("training time %.1f s (%d threads)\n", seconds, options.threads);
     const DetectionAccuracy a = test_fhog_detector(out, train, options.upsample);
     std::printf("training      precision %.4f  recall %.4f  AP %.4f\n", a.precision, a.recall,
                 a.average_precision);
     nlohmann::json j = {{"train_precision", a.precision}, {"train_recall", a.recall},
                         {"train_ap", a.average_precision}, {"seconds", seconds},
-                        {"window", {report.window.width, report.window.height}}};
+                        {"window", {report.window.width, report.window.height}},
+                        {"boxes", report.boxes}, {"unreachable_boxes", report.unreachable}};
     if (!test.empty()) {
       const DetectionAccuracy t = test_fhog_detector(out, test, options.upsample);
       std::printf("test          precision %.4f  recall %.4f  AP %.4f (%s)\n", t.precision, t.recall,

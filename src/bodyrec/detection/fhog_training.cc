@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include <dlib/image_processing.h>
+#include <dlib/image_processing/remove_unobtainable_rectangles.h>
 #include <dlib/opencv/cv_image.h>
 #include <dlib/svm_threaded.h>
 
@@ -61,24 +62,6 @@ FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& in, co
   report.window = cv::Size(static_cast<int>(std::lround(options.target_size * std::sqrt(aspect))),
                            static_cast<int>(std::lround(options.target_size / std::sqrt(aspect))));
 
-  // A box smaller than the window cannot be found at any pyramid level: dlib would reject the whole
-  // labelling, so such boxes become "ignore" (counted in the report).
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    auto& list = boxes[i];
-    for (auto it = list.begin(); it != list.end();) {
-      if (it->height() < static_cast<unsigned long>(report.window.height * 0.9)) {
-        ignore[i].push_back(*it);
-        it = list.erase(it);
-        ++report.too_small;
-      } else {
-        ++report.boxes;
-        ++it;
-      }
-    }
-  }
-  if (report.boxes == 0) throw ProcessingError("every box is smaller than the detection window; lower --target-size");
-  if (options.flip) dlib::add_image_left_right_flips(images, boxes, ignore);
-
   Scanner scanner;
   scanner.set_detection_window_size(static_cast<unsigned long>(report.window.width),
                                     static_cast<unsigned long>(report.window.height));
@@ -87,6 +70,18 @@ FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& in, co
   trainer.set_c(options.C);
   trainer.set_epsilon(options.epsilon);
   if (options.verbose) trainer.be_verbose();
+
+  // Boxes no window position and scale can match (too small, or too far from the window's shape) would
+  // make dlib reject the whole labelling: they become "ignore" boxes, counted in the report.
+  const Rects removed = dlib::remove_unobtainable_rectangles(trainer, images, boxes);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    report.unreachable += static_cast<int>(removed[i].size());
+    report.boxes += static_cast<int>(boxes[i].size());
+    ignore[i].insert(ignore[i].end(), removed[i].begin(), removed[i].end());
+  }
+  if (report.boxes == 0) throw ProcessingError("no box fits the detection window; change --target-size");
+  if (options.flip) dlib::add_image_left_right_flips(images, boxes, ignore);
+
   dlib::object_detector<Scanner> detector;
   try {
     detector = trainer.train(images, boxes, ignore);

@@ -33,15 +33,15 @@ struct FhogTrainingImage {
 struct FhogTrainReport {
   cv::Size window;           // sliding window (width x height)
   int boxes = 0;             // boxes trained on
-  int too_small = 0;         // boxes smaller than the window could detect, moved to `ignore`
+  int unreachable = 0;       // boxes no window position/scale can match (dlib), moved to `ignore`
 };
 
 struct DetectionAccuracy {
   double precision = 0, recall = 0, average_precision = 0;
 };
 
-// Trains and writes the detector to `out_path` (dlib serialisation). Boxes the window cannot reach
-// (narrower or lower than the window at the original scale) are ignored and counted. Throws
+// Trains and writes the detector to `out_path` (dlib serialisation). Boxes the sliding window cannot
+// match (dlib's remove_unobtainable_rectangles: too small, or of another shape) are ignored and counted. Throws
 // ProcessingError when there is nothing to train on, dlib rejects the labels, or the file cannot be written.
 FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& images, const FhogTrainOptions& options,
                                     const std::string& out_path);
