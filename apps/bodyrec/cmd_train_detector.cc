@@ -39,7 +39,7 @@ struct TrainDetectorCommand {
     std::printf("window        %dx%d (target size %d, median box aspect)\n", report.window.width,
                 report.window.height, options.target_size);
     std::printf("boxes         %d trained on, %d the window cannot match ignored%s\n", report.boxes,
-                report.unreachable, options.flip ? " (before adding mirrored copies)" : "");
+                report.unreachable, options.flip ? " (mirrored copies included)" : "");
     std::printf("training time %.1f s (%d threads)\n", seconds, options.threads);
     const DetectionAccuracy a = test_fhog_detector(out, train, options.upsample);
     std::printf("training      precision %.4f  recall %.4f  AP %.4f\n", a.precision, a.recall,
@@ -66,9 +66,10 @@ void add(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("train-detector", "Train a dlib fHOG + SVM people detector from imglab boxes");
   sub->footer(
       "Precision and recall count a detection as a hit at IoU >= 0.5 (dlib's test_object_detection_function).\n"
-      "The thesis used -C 0.65 --epsilon 0.01 --target-size 100 --flip, no upsampling.\n"
-      "Example: bodyrec train-detector out/contours/train.xml --test out/contours/test.xml --out out/detector.svm "
-      "-C 0.65 --flip");
+      "The thesis used -C 0.65 --epsilon 0.01 --target-size 100 --flip, no upsampling (on Penn-Fudan that finds\n"
+      "nobody; -C 20 --target-size 64 --flip does better, see docs/benchmarks.md).\n"
+      "Example: bodyrec train-detector out/boxes/train.xml --test out/boxes/test.xml --out out/detector.svm "
+      "-C 20 --target-size 64 --flip");
   sub->add_option("train", command->train_xml, "Training set: imglab XML with boxes (ignore='1' boxes ignored)")
       ->required();
   sub->add_option("--out", command->out, "Detector file to write (.svm)")->required();

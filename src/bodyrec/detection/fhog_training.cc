@@ -72,7 +72,9 @@ FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& in, co
   if (options.verbose) trainer.be_verbose();
 
   // Boxes no window position and scale can match (too small, or too far from the window's shape) would
-  // make dlib reject the whole labelling: they become "ignore" boxes, counted in the report.
+  // make dlib reject the whole labelling: they become "ignore" boxes, counted in the report. After the
+  // flip, since a mirrored box need not fall on the window grid.
+  if (options.flip) dlib::add_image_left_right_flips(images, boxes, ignore);
   const Rects removed = dlib::remove_unobtainable_rectangles(trainer, images, boxes);
   for (size_t i = 0; i < boxes.size(); ++i) {
     report.unreachable += static_cast<int>(removed[i].size());
@@ -80,15 +82,14 @@ FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& in, co
     ignore[i].insert(ignore[i].end(), removed[i].begin(), removed[i].end());
   }
   if (report.boxes == 0) throw ProcessingError("no box fits the detection window; change --target-size");
-  if (options.flip) dlib::add_image_left_right_flips(images, boxes, ignore);
 
   dlib::object_detector<Scanner> detector;
   try {
     detector = trainer.train(images, boxes, ignore);
   } catch (const dlib::impossible_labeling_error& e) {
     std::string why = e.what();
-    throw ProcessingError("dlib cannot learn these boxes (" + why.substr(0, why.find('\n')) +
-                          "); check overlapping boxes or boxes of very different shapes");
+    std::replace(why.begin(), why.end(), '\n', ' ');
+    throw ProcessingError("dlib cannot learn these boxes: " + why);
   }
   std::ofstream out(out_path, std::ios::binary);
   if (!out) throw ProcessingError("cannot write " + out_path);
