@@ -1,0 +1,46 @@
+// `bodyrec eval landmarks`: landmark error of a shape model inside the ground-truth boxes of an imglab set.
+#include <cstdio>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/landmarks/body_shape.h"
+#include "bodyrec/landmarks/landmark_dataset.h"
+#include "bodyrec/landmarks/landmark_metrics.h"
+#include "command.h"
+#include "landmark_report.h"
+
+namespace bodyrec::cli {
+namespace {
+
+struct EvalLandmarksCommand {
+  std::string xml, shape;
+  bool json = false;
+
+  void run() const {
+    const BodyShapeModel model(shape);
+    const LandmarkDataset data = load_landmark_dataset(xml);
+    if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
+    const LandmarkScores s = evaluate_body_shape(model, data, xml);
+    print_landmark_scores(xml, s);
+    if (json) std::printf("%s\n", landmark_scores_json(s).dump().c_str());
+  }
+};
+
+void add(CLI::App& eval) {
+  auto command = std::make_shared<EvalLandmarksCommand>();
+  CLI::App* sub = eval.add_subcommand("landmarks", "Score a body shape model inside ground-truth boxes");
+  sub->footer(
+      "Error per person = mean distance between predicted and true landmark i; also divided by the box height\n"
+      "and by the image width (the thesis's measure), and point-to-contour (distance to the true outline).\n"
+      "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
+  sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
+  sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  sub->add_flag("--json", command->json,
+                "End stdout with one JSON object (mean_px, mean_rel_height, mean_rel_width, p90_rel_height, "
+                "persons, ms_per_person, ...)");
+  sub->callback([command] { command->run(); });
+}
+
+const bool registered = register_command({"eval", 30, add});
+
+}  // namespace
+}  // namespace bodyrec::cli

@@ -1,0 +1,128 @@
+#include "bodyrec/landmarks/contour.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace bodyrec {
+
+std::string to_string(ContourStatus status) {
+  switch (status) {
+    case ContourStatus::kOk: return "ok";
+    case ContourStatus::kEmpty: return "empty mask";
+    case ContourStatus::kTooSmall: return "too small";
+    case ContourStatus::kTouchesBorder: return "touches border";
+  }
+  return "?";
+}
+
+void ContourOptions::check() const {
+  if (landmarks < 3 || landmarks > 10000) throw UsageError("--landmarks must be in [3, 10000]");
+  if (min_height < 1) throw UsageError("minimum person height must be >= 1 px");
+  if (!(max_border_fraction >= 0 && max_border_fraction <= 1))
+    throw UsageError("maximum border fraction must be in [0, 1]");
+}
+
+double signed_area2(const std::vector<cv::Point2d>& polygon) {
+  double sum = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const cv::Point2d& a = polygon[i];
+    const cv::Point2d& b = polygon[(i + 1) % polygon.size()];
+    sum += a.x * b.y - b.x * a.y;
+  }
+  return sum;
+}
+
+std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed, int n) {
+  std::vector<cv::Point2d> out;
+  if (closed.empty() || n < 1) return out;
+  const size_t m = closed.size();
+  std::vector<double> cumulative(m + 1, 0.0);  // arc length at the start of each segment
+  for (size_t i = 0; i < m; ++i) cumulative[i + 1] = cumulative[i] + cv::norm(closed[(i + 1) % m] - closed[i]);
+  const double total = cumulative[m];
+  out.reserve(static_cast<size_t>(n));
+  size_t segment = 0;
+  for (int k = 0; k < n; ++k) {
+    const double s = total * k / n;
+    while (segment + 1 < m && cumulative[segment + 1] <= s) ++segment;
+    const double length = cumulative[segment + 1] - cumulative[segment];
+    const double t = length > 0 ? (s - cumulative[segment]) / length : 0.0;
+    const cv::Point2d& a = closed[segment];
+    const cv::Point2d& b = closed[(segment + 1) % m];
+    out.push_back(a + t * (b - a));
+  }
+  return out;
+}
+
+BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options) {
+  CV_Assert(mask.type() == CV_8UC1);
+  BodyContour result;
+  cv::Mat binary = mask != 0;
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S);
+  if (count < 2) return result;
+  int largest = 1;
+  for (int i = 2; i < count; ++i)
+    if (stats.at<int>(i, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = i;
+  const cv::Mat component = labels == largest;
+
+  std::vector<std::vector<cv::Point>> outlines;
+  cv::findContours(component, outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  if (outlines.empty()) return result;
+  const auto& outline = *std::max_element(outlines.begin(), outlines.end(), [](const auto& a, const auto& b) {
+    return cv::contourArea(a) < cv::contourArea(b);
+  });
+  result.bounds = cv::boundingRect(outline);
+
+  int on_border = 0;
+  for (const cv::Point& p : outline)
+    if (p.x == 0 || p.y == 0 || p.x == mask.cols - 1 || p.y == mask.rows - 1) ++on_border;
+  result.border_fraction = static_cast<double>(on_border) / static_cast<double>(outline.size());
+  if (result.bounds.height < options.min_height) {
+    result.status = ContourStatus::kTooSmall;
+    return result;
+  }
+  if (result.border_fraction > options.max_border_fraction) {
+    result.status = ContourStatus::kTouchesBorder;
+    return result;
+  }
+
+  std::vector<cv::Point2d> closed(outline.begin(), outline.end());
+  if (signed_area2(closed) < 0) std::reverse(closed.begin(), closed.end());
+  const auto top_left = std::min_element(closed.begin(), closed.end(), [](const cv::Point2d& a, const cv::Point2d& b) {
+    return a.y != b.y ? a.y < b.y : a.x < b.x;
+  });
+  std::rotate(closed.begin(), top_left, closed.end());
+  result.points = resample_closed(closed, options.landmarks);
+  result.status = ContourStatus::kOk;
+  return result;
+}
+
+std::vector<cv::Point2d> mirror_contour(const std::vector<cv::Point2d>& points, int image_width) {
+  const size_t n = points.size();
+  std::vector<cv::Point2d> out(n);
+  for (size_t i = 0; i < n; ++i) {
+    const cv::Point2d& p = points[(n - i) % n];
+    out[i] = cv::Point2d(image_width - 1 - p.x, p.y);
+  }
+  return out;
+}
+
+double distance_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon) {
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    const cv::Point2d& a = polygon[i];
+    const cv::Point2d& b = polygon[(i + 1) % polygon.size()];
+    const cv::Point2d ab = b - a;
+    const double len2 = ab.dot(ab);
+    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, cv::norm(p - (a + t * ab)));
+  }
+  return best;
+}
+
+}  // namespace bodyrec

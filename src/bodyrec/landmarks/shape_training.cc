@@ -1,0 +1,74 @@
+#include "bodyrec/landmarks/shape_training.h"
+
+#include <fstream>
+
+#include <dlib/image_processing/shape_predictor_trainer.h>
+#include <dlib/image_transforms/assign_image.h>
+#include <dlib/opencv/cv_image.h>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/landmarks/body_shape_impl.h"
+
+namespace bodyrec {
+
+void ShapeTrainOptions::check() const {
+  if (oversampling < 1) throw UsageError("--oversampling must be >= 1");
+  if (!(nu > 0 && nu <= 1)) throw UsageError("--nu must be in (0, 1]");
+  if (tree_depth < 1 || tree_depth > 10) throw UsageError("--tree-depth must be in [1, 10]");
+  if (cascade_depth < 1) throw UsageError("--cascade-depth must be >= 1");
+  if (trees_per_level < 1) throw UsageError("--trees-per-level must be >= 1");
+  if (feature_pool_size < 2) throw UsageError("--feature-pool-size must be >= 2");
+  if (test_splits < 1) throw UsageError("--test-splits must be >= 1");
+  if (!(lambda > 0)) throw UsageError("--lambda must be > 0");
+  if (!(padding >= 0)) throw UsageError("--padding must be >= 0");
+  if (threads < 1) throw UsageError("--threads must be >= 1");
+}
+
+BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOptions& options) {
+  options.check();
+  dlib::array<dlib::array2d<unsigned char>> images;
+  std::vector<std::vector<dlib::full_object_detection>> shapes;
+  for (const auto& image : data.images) {
+    std::vector<dlib::full_object_detection> people;
+    for (const auto& person : image.people) {
+      if (person.ignore || person.landmarks.empty()) continue;
+      std::vector<dlib::point> parts;
+      for (const auto& p : person.landmarks) parts.emplace_back(std::lround(p.x), std::lround(p.y));
+      people.emplace_back(to_dlib_rect(person.box), parts);
+    }
+    if (people.empty()) continue;
+    images.resize(images.size() + 1);
+    dlib::assign_image(images[images.size() - 1], dlib::cv_image<unsigned char>(BodyShapeModel::prepare(image.image)));
+    shapes.push_back(std::move(people));
+  }
+  if (shapes.empty()) throw ProcessingError("no person with landmarks to train the shape model on");
+
+  dlib::shape_predictor_trainer trainer;
+  trainer.set_oversampling_amount(static_cast<unsigned long>(options.oversampling));
+  trainer.set_nu(options.nu);
+  trainer.set_tree_depth(static_cast<unsigned long>(options.tree_depth));
+  trainer.set_cascade_depth(static_cast<unsigned long>(options.cascade_depth));
+  trainer.set_num_trees_per_cascade_level(static_cast<unsigned long>(options.trees_per_level));
+  trainer.set_feature_pool_size(static_cast<unsigned long>(options.feature_pool_size));
+  trainer.set_num_test_splits(static_cast<unsigned long>(options.test_splits));
+  trainer.set_lambda(options.lambda);
+  trainer.set_feature_pool_region_padding(options.padding);
+  trainer.set_num_threads(static_cast<unsigned long>(options.threads));
+  if (!options.seed.empty()) trainer.set_random_seed(options.seed);
+  if (options.verbose) trainer.be_verbose();
+  try {
+    return ShapeModelAccess::make(trainer.train(images, shapes));
+  } catch (const dlib::error& e) {
+    throw ProcessingError(std::string("shape model training failed: ") + e.what());
+  }
+}
+
+void save_body_shape(const BodyShapeModel& model, const std::string& path) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw ProcessingError("cannot write " + path);
+  dlib::serialize(ShapeModelAccess::predictor(model), out);
+  out.flush();
+  if (!out) throw ProcessingError("cannot write " + path);
+}
+
+}  // namespace bodyrec

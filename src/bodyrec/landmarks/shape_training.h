@@ -1,0 +1,35 @@
+// Training the body shape predictor with dlib's shape_predictor_trainer. Defaults are dlib's; the thesis
+// used oversampling 500, nu 0.05, tree depth 2 on 4 images.
+#pragma once
+
+#include <string>
+
+#include "bodyrec/landmarks/body_shape.h"
+#include "bodyrec/landmarks/landmark_dataset.h"
+
+namespace bodyrec {
+
+struct ShapeTrainOptions {
+  int oversampling = 20;          // random initial shapes per training person
+  double nu = 0.1;                // learning rate (shrinkage), (0, 1]
+  int tree_depth = 4;
+  int cascade_depth = 10;
+  int trees_per_level = 500;
+  int feature_pool_size = 400;    // candidate pixels per cascade level
+  int test_splits = 20;           // random split tests tried per tree node
+  double lambda = 0.1;            // prior favouring close pixel pairs in split tests
+  double padding = 0.0;           // feature pool region grown by this fraction of the landmark box
+  int threads = 2;
+  std::string seed;               // random seed ("" = dlib's default, reproducible)
+  bool verbose = false;
+  void check() const;             // throws UsageError naming the option
+};
+
+// Trains on every non-ignored person with landmarks (images converted to grey).
+// Throws ProcessingError when there is nothing to train on.
+BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOptions& options);
+
+// Writes the model (dlib serialisation). Throws ProcessingError when the file cannot be written.
+void save_body_shape(const BodyShapeModel& model, const std::string& path);
+
+}  // namespace bodyrec

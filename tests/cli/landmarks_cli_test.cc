@@ -1,0 +1,144 @@
+// The landmarking commands end to end on a drawn Penn-Fudan-like folder: make-contour-set, train-shape,
+// train-detector, eval landmarks, landmark; and their errors with exit codes.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "synthetic_silhouette.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace bodyrec::testing {
+namespace {
+
+class LandmarkCommands : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    make_pennfudan_like(*dir_ / "pf");
+    set_ = run_bodyrec({"make-contour-set", "--pennfudan", (*dir_ / "pf").string(), "--out", (*dir_ / "set").string(),
+                        "--landmarks", "30", "--flip", "--json"});
+    shape_ = run_bodyrec({"train-shape", (*dir_ / "set" / "train.xml").string(), "--out", (*dir_ / "shape.dat").string(),
+                          "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
+                          "3", "--json"});
+  }
+  static void TearDownTestSuite() { delete dir_; }
+  static fs::path path(const std::string& name) { return *dir_ / name; }
+
+  static TempDir* dir_;
+  static RunResult set_, shape_;
+};
+TempDir* LandmarkCommands::dir_ = nullptr;
+RunResult LandmarkCommands::set_, LandmarkCommands::shape_;
+
+TEST_F(LandmarkCommands, MakeContourSetReportsCountsPerReason) {
+  ASSERT_EQ(set_.exit_code, 0) << set_.err;
+  const auto j = last_json_line(set_.out);
+  EXPECT_EQ(j["train_images"], 6);
+  EXPECT_EQ(j["test_images"], 2);
+  EXPECT_EQ(j["train_people"], 6);
+  EXPECT_EQ(j["test_people"], 2);
+  EXPECT_EQ(j["flipped_people"], 6);
+  EXPECT_EQ(j["skipped_small"], 2);
+  EXPECT_EQ(j["skipped_border"], 1);
+  EXPECT_TRUE(contains(set_.out, "1 touching the border"));
+  EXPECT_TRUE(fs::exists(path("set/images/P00_flip.png")));
+}
+
+TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
+  ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
+  const auto t = last_json_line(shape_.out);
+  EXPECT_EQ(t["train"]["persons"], 8);       // P00, P01, P04, P05 and their mirrors
+  EXPECT_EQ(t["validation"]["persons"], 4);  // source images 2 and 5 (P02, P06) with their mirrors
+  EXPECT_LT(t["train"]["mean_px"].get<double>(), 20.0);
+  EXPECT_GT(t["model_bytes"].get<int>(), 1000);
+
+  const RunResult e = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                   path("shape.dat").string(), "--json"});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const auto j = last_json_line(e.out);
+  for (const char* key : {"mean_px", "mean_rel_height", "mean_rel_width", "p90_rel_height", "persons", "ms_per_person",
+                          "point_to_contour_rel_height"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["persons"], 2);
+  EXPECT_NEAR(j["mean_rel_width"].get<double>(), j["mean_px"].get<double>() / 240, 1e-9);
+  EXPECT_LT(j["mean_px"].get<double>(), 25.0);  // people are 150 px tall
+  EXPECT_LE(j["point_to_contour_px"].get<double>(), j["mean_px"].get<double>());
+}
+
+TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {
+  ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
+  const RunResult d = run_bodyrec({"train-detector", path("set/train.xml").string(), "--test",
+                                   path("set/test.xml").string(), "--out", path("det.svm").string(), "--target-size",
+                                   "60", "--json"});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const auto dj = last_json_line(d.out);
+  EXPECT_GE(dj["train_recall"].get<double>(), 0.5);
+  EXPECT_TRUE(dj.contains("test_precision"));
+
+  const RunResult r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", path("shape.dat").string(),
+                                   "--detector", path("det.svm").string(), "--annotate", path("annotated").string(),
+                                   "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto row = last_json_line(r.out);
+  EXPECT_EQ(row["frame"], 0);
+  ASSERT_GE(row["people"].size(), 1u);
+  for (const auto& p : row["people"]) {
+    EXPECT_EQ(p["box"].size(), 4u);
+    EXPECT_TRUE(p["score"].is_number());
+    ASSERT_EQ(p["landmarks"].size(), 30u);
+    EXPECT_EQ(p["landmarks"][0].size(), 2u);
+  }
+  EXPECT_TRUE(fs::exists(path("annotated/000000.png")));
+}
+
+TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
+  ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
+  const std::string shape = path("shape.dat").string();
+  // Broken XML, missing image, no landmarks, a model with another landmark count: input errors (3).
+  write_text(path("broken.xml"), "<dataset><images><image file='x.png'>");
+  RunResult r = run_bodyrec({"eval", "landmarks", path("broken.xml").string(), "--shape", shape});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "broken.xml")) << r.err;
+  write_text(path("gone.xml"), "<dataset><images><image file='set/images/gone.png'/></images></dataset>");
+  r = run_bodyrec({"eval", "landmarks", path("gone.xml").string(), "--shape", shape});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "gone.png")) << r.err;
+  write_text(path("boxes.xml"), "<dataset><images><image file='set/images/P00.png'>"
+                                "<box top='1' left='1' width='50' height='90'/></image></images></dataset>");
+  r = run_bodyrec({"train-shape", path("boxes.xml").string(), "--out", path("x.dat").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "no box has landmarks")) << r.err;
+  write_text(path("three.xml"), "<dataset><images><image file='set/images/P00.png'><box top='1' left='1' width='50' "
+                                "height='90'><part name='0' x='3' y='3'/><part name='1' x='9' y='3'/>"
+                                "<part name='2' x='9' y='9'/></box></image></images></dataset>");
+  r = run_bodyrec({"eval", "landmarks", path("three.xml").string(), "--shape", shape});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "3 landmarks per box, the model 30")) << r.err;
+  r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", path("set/train.xml").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "not a dlib shape predictor")) << r.err;
+  r = run_bodyrec({"make-contour-set", "--pennfudan", path("nowhere").string(), "--out", path("o").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "nowhere")) << r.err;
+  r = run_bodyrec({"train-detector", path("gone.xml").string(), "--out", path("d.svm").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  // Usage errors (2).
+  r = run_bodyrec({"make-contour-set", "--pennfudan", path("pf").string(), "--out", path("o").string(), "--box-margin",
+                   "-0.5"});
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--nu", "0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--nu")) << r.err;
+  r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--mot", path("m.txt").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  // An output that cannot be written: processing error (4).
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("no/such/dir/x.dat").string(),
+                   "--cascade-depth", "1", "--trees-per-level", "2"});
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_TRUE(contains(r.err, "x.dat")) << r.err;
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
