@@ -376,10 +376,12 @@ TEST(Sinks, MotRowsAreOneBasedWithTwoDecimalBoxes) {
     MotWriter w(path.string());
     w.write(0, -1, Box(1.234, 2, 3.5, 4), 0.5);
     w.write(9, 7, Box(10, 20, 30, 40), -1.25);
+    w.write(10, 7, Box(-0.003, -0.0049, 30, 40), 1);  // never "-0.00"
     w.end_frame();
   }
   EXPECT_EQ(testing::read_text(path),
-            "1,-1,1.23,2.00,3.50,4.00,0.500000,-1,-1,-1\n10,7,10.00,20.00,30.00,40.00,-1.250000,-1,-1,-1\n");
+            "1,-1,1.23,2.00,3.50,4.00,0.500000,-1,-1,-1\n10,7,10.00,20.00,30.00,40.00,-1.250000,-1,-1,-1\n"
+            "11,7,0.00,0.00,30.00,40.00,1.000000,-1,-1,-1\n");
 }
 
 TEST(Sinks, JsonlOneObjectPerLine) {

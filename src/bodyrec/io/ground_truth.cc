@@ -81,6 +81,7 @@ GroundTruth read_mot(const std::string& path, bool is_ground_truth) {
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 byte-order mark
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::string where = path + ": line " + std::to_string(line_number);
     const auto f = split_fields(line);

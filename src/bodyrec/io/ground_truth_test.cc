@@ -247,6 +247,14 @@ TEST(Mot, CrlfLineEndingsAndBlankLinesAreAccepted) {
   EXPECT_EQ(gt.frame_count, 2);
 }
 
+TEST(Mot, ByteOrderMarkIsSkipped) {
+  TempDir dir;
+  write_text(dir / "gt.txt", "\xEF\xBB\xBF" "1,1,912,484,97,109,1,1,1.0\n");
+  const GroundTruth gt = read_mot((dir / "gt.txt").string(), true);
+  ASSERT_EQ(gt.boxes.size(), 1u);
+  EXPECT_EQ(gt.boxes[0].box, Box(912, 484, 97, 109));
+}
+
 TEST(Mot, LastLineWithoutNewlineAndSpaceOrTabSeparatedRows) {
   TempDir dir;
   write_text(dir / "a.txt", "1,1,1,2,3,4\n3,2,5,6,7,8");

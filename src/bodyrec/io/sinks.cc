@@ -1,6 +1,7 @@
 #include "bodyrec/io/sinks.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -53,8 +54,10 @@ MotWriter::MotWriter(const std::string& path) : path_(path) {
 }
 
 void MotWriter::write(int frame, int id, const Box& box, double score) {
-  out_ << frame + 1 << ',' << id << ',' << std::setprecision(2) << box.x << ',' << box.y << ','
-       << box.width << ',' << box.height << ',' << std::setprecision(6) << score << ",-1,-1,-1\n";
+  // Values that print as zero are written as 0.00, never -0.00 (a tiny negative x or y).
+  auto c = [](double v) { return std::abs(v) < 0.005 ? 0.0 : v; };
+  out_ << frame + 1 << ',' << id << ',' << std::setprecision(2) << c(box.x) << ',' << c(box.y) << ','
+       << c(box.width) << ',' << c(box.height) << ',' << std::setprecision(6) << score << ",-1,-1,-1\n";
 }
 
 void MotWriter::end_frame() {
@@ -84,7 +87,9 @@ void AnnotatedWriter::write(int frame_index, const cv::Mat& image) {
     return;
   }
   if (!video_.isOpened()) {
-    const bool mp4 = fs::path(path_).extension() == ".mp4";
+    std::string ext = fs::path(path_).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+    const bool mp4 = ext == ".mp4";
     const int fourcc = mp4 ? cv::VideoWriter::fourcc('m', 'p', '4', 'v') : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
     if (!video_.open(path_, fourcc, fps_, image.size()))
       throw ProcessingError("cannot create video " + path_);
