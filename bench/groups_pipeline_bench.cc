@@ -29,12 +29,18 @@ std::shared_ptr<const bodyrec::GroundPlane> pets_ground() {
   return bodyrec::read_tsai_calibration(path.string());
 }
 
-void BM_GroupsPipeline(benchmark::State& state) {
+// The 300 frames, or nullptr after marking the benchmark skipped.
+const std::vector<cv::Mat>* frames_or_skip(benchmark::State& state) {
   const auto& frames = bodyrec::bench::vtest_frames(0, 300);
-  if (frames.empty()) {
-    state.SkipWithError("vtest.avi not found (install opencv-doc: scripts/install-deps)");
-    return;
-  }
+  if (!frames.empty()) return &frames;
+  state.SkipWithError("vtest.avi not found (install opencv-doc: scripts/install-deps)");
+  return nullptr;
+}
+
+void BM_GroupsPipeline(benchmark::State& state) {
+  const auto* loaded = frames_or_skip(state);
+  if (!loaded) return;
+  const auto& frames = *loaded;
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
   bodyrec::MultiTracker tracker;
   bodyrec::GroupPipeline pipeline({}, pets_ground());
@@ -50,11 +56,9 @@ void BM_GroupsPipeline(benchmark::State& state) {
 }
 
 void BM_GroupStagesOnly(benchmark::State& state) {
-  const auto& frames = bodyrec::bench::vtest_frames(0, 300);
-  if (frames.empty()) {
-    state.SkipWithError("vtest.avi not found (install opencv-doc: scripts/install-deps)");
-    return;
-  }
+  const auto* loaded = frames_or_skip(state);
+  if (!loaded) return;
+  const auto& frames = *loaded;
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
   bodyrec::MultiTracker tracker;
   std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
