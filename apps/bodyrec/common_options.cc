@@ -47,7 +47,10 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   o.o_adapt = sub.add_option("--adapt-after", o.adapt_after,
                              "HOG with motion regions: after N confident detections, search each region only at "
                              "the person heights the scene shows there (0 = off)" + p);
-  for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels, o.o_adapt})
+  o.o_motion_margin = sub.add_option("--motion-margin", o.motion_margin,
+                                     "Motion regions grow by this fraction of their size on every side" + p);
+  for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels, o.o_adapt,
+                           o.o_motion_margin})
     opt->default_str("preset");
   sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
   sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
@@ -76,6 +79,7 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   if (given(o.o_levels)) h.levels = o.levels;
   if (given(o.o_resize) || given(o.o_levels)) h.min_height = h.max_height = 0;  // a custom range: no adaptation
   if (given(o.o_adapt)) h.adapt_after = o.adapt_after;
+  if (given(o.o_motion_margin)) h.motion.margin = o.motion_margin;
   if (o.roi.size() == 4) h.roi = cv::Rect(o.roi[0], o.roi[1], o.roi[2], o.roi[3]);
   if (o.motion != "preset") h.motion_roi = o.motion == "on";
   else if (!consecutive_frames) h.motion_roi = false;

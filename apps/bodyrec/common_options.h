@@ -31,14 +31,14 @@ struct DetectorOptions {
   std::string model_file;  // dlib fHOG .svm; replaces HOG when given
   double fhog_upsample = 1.0, fhog_threshold = 0.0;
   std::string hog_model = "default";
-  double hit_threshold = 0, scale = 0, resize = 0, nms_iou = 0.4;
+  double hit_threshold = 0, scale = 0, resize = 0, nms_iou = 0.4, motion_margin = 0;
   int win_stride = 0, padding = 0, group_threshold = 0, levels = 0, adapt_after = 0;
   std::vector<int> roi;
   std::string motion = "preset";  // "on", "off" or "preset"
   std::vector<CLI::Option*> given;  // filled by add_detector_options
   CLI::Option *o_hit = nullptr, *o_stride = nullptr, *o_padding = nullptr, *o_scale = nullptr,
               *o_group = nullptr, *o_resize = nullptr, *o_levels = nullptr, *o_hog_model = nullptr,
-              *o_adapt = nullptr;
+              *o_adapt = nullptr, *o_motion_margin = nullptr;
 };
 
 void add_detector_options(CLI::App& sub, DetectorOptions& options);

@@ -34,7 +34,7 @@ struct HogOptions {
   // detections, a PersonHeightModel limits each region's search to the heights people can have there
   // (within adapt_margin of the fitted line, inside [min_height, max_height]). 0 = off.
   int adapt_after = 0;
-  double adapt_margin = 0.35;
+  double adapt_margin = 0.2;
   double adapt_min_score = 0.5;   // detections at least this confident teach the model
   double min_height = 0, max_height = 0;  // set by set_height_range; 0 = not set (no adaptation)
   // Where the body sits in the detector window, as fractions of the window (measured on PETS boxes).
