@@ -43,10 +43,10 @@ TEST(Outline, TracedAndOpenCvAgreeAndRunClockwiseFromTheTop) {
   EXPECT_EQ(traced[4], cv::Point(5, 1));
   EXPECT_EQ(traced[8], cv::Point(5, 5));
   const auto cv_outline = opencv_outline(square_labels(), 2);
-  EXPECT_EQ(std::set<std::pair<int, int>>(cv_outline.begin(), cv_outline.end()).size(), 16u);
   std::set<std::pair<int, int>> a, b;
   for (const auto& p : traced) a.insert({p.x, p.y});
   for (const auto& p : cv_outline) b.insert({p.x, p.y});
+  EXPECT_EQ(b.size(), 16u);
   EXPECT_EQ(a, b);
   EXPECT_TRUE(trace_outline(square_labels(), 0).empty());
   // A one-pixel body and an L shape with a thin part still close.
@@ -57,7 +57,8 @@ TEST(Outline, TracedAndOpenCvAgreeAndRunClockwiseFromTheTop) {
   l(cv::Rect(1, 1, 1, 4)).setTo(0);
   l(cv::Rect(1, 4, 4, 1)).setTo(0);
   const auto lo = trace_outline(l, 0);
-  EXPECT_EQ(lo.size(), 12u);  // thin parts are walked out and back
+  // Thin parts are walked out and back; the inner corner (1,4) is cut diagonally on the way back.
+  EXPECT_EQ(lo.size(), 11u);
   EXPECT_EQ(lo[0], cv::Point(1, 1));
 }
 

@@ -342,7 +342,13 @@ Segmentation DepthSegmenter::segment(const cv::Mat& depth) {
         }
         if (col > -1e8 && p - col < 0.15) continue;
       }
-      heads.emplace_back(cl.lat_min + (b + 0.5) * bin, prof_dep[static_cast<size_t>(b)] / prof_n[static_cast<size_t>(b)]);
+      // The head's centre: the middle of the run of bins within 5 cm of its top (a flat head top
+      // spans several bins; the first of them would pull the split towards one side).
+      int lo = b, hi = b;
+      while (lo - 1 >= std::max(0, b - reach) && prof[static_cast<size_t>(lo - 1)] >= p - 0.05 && usable(lo - 1)) --lo;
+      while (hi + 1 <= std::min(bins - 1, b + reach) && prof[static_cast<size_t>(hi + 1)] >= p - 0.05 && usable(hi + 1)) ++hi;
+      heads.emplace_back(cl.lat_min + (0.5 * (lo + hi) + 0.5) * bin,
+                         prof_dep[static_cast<size_t>(b)] / prof_n[static_cast<size_t>(b)]);
     }
     if (heads.empty()) continue;
     const size_t first = persons.size();

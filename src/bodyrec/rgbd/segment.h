@@ -3,9 +3,11 @@
 // optional per-pixel depth model learnt over time (the farthest depth each pixel has seen) and ground is a
 // plane fitted by RANSAC to the lower part of the cloud. Foreground pixels are clustered on the organised
 // cloud (neighbours join when their depths differ by less than a distance-dependent jump), fragments are
-// merged into the person whose ground-plane footprint they touch, clusters are split at heads (maxima of
-// the height profile across the cluster, at least a head's distance apart) and kept as people when their
-// top lies within the person height range.
+// merged into the person whose ground-plane footprint they touch (left-over fragments that touch each
+// other may make a person together), clusters are split at heads (maxima of the height profile across the
+// floor, closer than a head distance to no higher bin, and at least 0.15 m prominent unless the top) and
+// kept as people when their top lies within the person height range. With a background model, the
+// ground band is 3 cm (the floor is background anyway) so that feet stay with their bodies.
 //
 //   DepthSegmenter seg(meta.depth, meta.depth_unit_m);
 //   seg.learn_background(frame.depth);          // optional, over a recording's frames
