@@ -1,7 +1,7 @@
 // Depth-only people segmentation and the CCD contour per 512x424 frame (issue 5 targets: segmentation
 // <= 15 ms, background removal + CCD contour <= 2 ms). Frames are rendered beforehand by the synthesizer
-// (seed 1, walk-turn, 30 frames from the middle); the segmenter's background is learnt from 60 frames
-// of the same recording, as `bodyrec segment` does. Also the real PCL five_people frame (640x480,
+// (seed 1, walk-turn, 150 frames, frames 60-89 timed); the segmenter's background is learnt from 60
+// frames spread over the same recording, as `bodyrec segment` does. Also the real PCL five_people frame (640x480,
 // ground plane only) when BODYREC_DATA / ../shared/datasets has it.
 #include <cmath>
 #include <cstdlib>
@@ -34,8 +34,15 @@ const SynthFrames& synth_frames(int people) {
   o.frames = 150;
   o.seed = 1;
   s.synth = std::make_unique<bodyrec::Synthesizer>(o);
-  for (int i = 0; i < o.frames; i += 5) s.background.push_back(s.synth->render(i).depth);
-  for (int i = 60; i < 90; ++i) s.frames.push_back(s.synth->render(i));
+  // As learn_recording_background: 60 frames spread evenly over the recording.
+  for (int k = 0; k < 60; ++k) s.background.push_back(s.synth->render(k * o.frames / 60).depth.clone());
+  for (int i = 60; i < 90; ++i) {
+    bodyrec::RgbdFrame f = s.synth->render(i);
+    f.depth = f.depth.clone();
+    f.body_index = f.body_index.clone();
+    f.color = f.color.clone();
+    s.frames.push_back(std::move(f));
+  }
   return s;
 }
 

@@ -78,6 +78,7 @@ std::optional<cv::Vec4d> DepthSegmenter::fit_ground(const cv::Mat& depth) {
     }
   }
   if (pts.size() < 50) return std::nullopt;
+  rng_state_ = 0x9e3779b97f4a7c15ULL;  // the same depth image gives the same plane, in any order
   const auto next = [this] {  // xorshift64*: deterministic, independent of the C library
     rng_state_ ^= rng_state_ >> 12;
     rng_state_ ^= rng_state_ << 25;

@@ -65,7 +65,7 @@ class DepthSegmenter {
 
   // Segments one depth frame. Throws InputError when depth is not CV_16U of the intrinsics' size.
   // When no ground plane is found the previous frame's plane is used; without any, heights are measured
-  // from the lowest foreground point.
+  // from the lowest foreground point. The RANSAC sampling restarts from a fixed seed for every frame.
   Segmentation segment(const cv::Mat& depth);
 
   const SegmentOptions& options() const { return options_; }
