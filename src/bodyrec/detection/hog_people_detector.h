@@ -74,7 +74,7 @@ class HogPeopleDetector : public PeopleDetector {
   const cv::HOGDescriptor& hog_for(int levels) const;
 
   HogOptions options_;
-  std::map<int, cv::HOGDescriptor> hogs_;  // by pyramid levels (nlevels is a member of the descriptor)
+  mutable std::map<int, cv::HOGDescriptor> hogs_;  // a cache by pyramid levels (nlevels is a descriptor member)
   std::optional<MotionRegions> motion_;
   std::optional<PersonHeightModel> heights_;
 };

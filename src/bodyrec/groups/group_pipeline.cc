@@ -46,7 +46,12 @@ GroupPipeline::~GroupPipeline() = default;
 GroupFrame GroupPipeline::process(const cv::Mat& image, double t, const std::vector<TrackedPerson>& tracks) {
   GroupFrame out;
   auto t0 = Clock::now();
-  const MotionResult& motion = motion_.update(image);
+  // One grey conversion per frame, shared by the motion stage, the leader trackers and the flow; the
+  // previous frame's buffer is kept by swapping, not copying.
+  std::swap(grey_, previous_grey_);
+  if (image.channels() == 1) image.copyTo(grey_);
+  else cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
+  const MotionResult& motion = motion_.update(grey_);
   out.motion_valid = motion.valid;
   out.motion_box = motion.box;
   out.motion_deviation = motion.deviation;
@@ -67,10 +72,6 @@ GroupFrame GroupPipeline::process(const cv::Mat& image, double t, const std::vec
   // tracker carries it through detector misses.
   const std::map<int, int> leaders = thesis_ ? assign_thesis(out, frames_) : assign_groups(out, t);
 
-  t0 = Clock::now();
-  grey_.copyTo(previous_grey_);
-  if (image.channels() == 1) image.copyTo(grey_);
-  else cv::cvtColor(image, grey_, cv::COLOR_BGR2GRAY);
   track_leaders(out, tracks, leaders);
 
   for (auto it = last_seen_.begin(); it != last_seen_.end();) {

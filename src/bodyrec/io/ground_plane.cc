@@ -31,14 +31,11 @@ class HomographyPlane : public GroundPlane {
 // ground points: undistort the pixel, then the ground-to-sensor homography f [r1 r2 T] backwards.
 class TsaiPlane : public GroundPlane {
  public:
-  TsaiPlane(double f, double kappa1, double cx, double cy, double sx, double dpx, double dy, const cv::Matx33d& r,
-            const cv::Vec3d& t, std::string name)
-      : kappa1_(kappa1), cx_(cx), cy_(cy), sx_(sx), dpx_(dpx), dy_(dy), name_(std::move(name)) {
-    const cv::Matx33d ground_to_sensor(f * r(0, 0), f * r(0, 1), f * t[0],  //
-                                       f * r(1, 0), f * r(1, 1), f * t[1],  //
-                                       r(2, 0), r(2, 1), t[2]);
-    sensor_to_ground_ = ground_to_sensor.inv();
-  }
+  // `ground_to_sensor` = f [r1 r2 T] (checked invertible by the caller).
+  TsaiPlane(double kappa1, double cx, double cy, double sx, double dpx, double dy,
+            const cv::Matx33d& ground_to_sensor, std::string name)
+      : kappa1_(kappa1), cx_(cx), cy_(cy), sx_(sx), dpx_(dpx), dy_(dy),
+        sensor_to_ground_(ground_to_sensor.inv()), name_(std::move(name)) {}
   cv::Point2d to_ground(const cv::Point2d& p) const override {
     const double xd = (p.x - cx_) * dpx_ / sx_, yd = (p.y - cy_) * dy_;
     const double k = 1.0 + kappa1_ * (xd * xd + yd * yd);
@@ -125,7 +122,7 @@ std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path) {
   const cv::Matx33d ground_to_sensor(f * r(0, 0), f * r(0, 1), f * t[0], f * r(1, 0), f * r(1, 1), f * t[1], r(2, 0),
                                      r(2, 1), t[2]);
   check_invertible(ground_to_sensor, path);
-  return std::make_unique<TsaiPlane>(f, kappa1, cx, cy, sx, dpx, dy, r, t, path);
+  return std::make_unique<TsaiPlane>(kappa1, cx, cy, sx, dpx, dy, ground_to_sensor, path);
 }
 
 }  // namespace bodyrec
