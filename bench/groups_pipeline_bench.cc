@@ -1,5 +1,6 @@
 // The whole group-leader pipeline per frame on vtest.avi (768x576), as `bodyrec groups` runs it by default:
-// HOG detection (default preset, motion regions) -> Kalman/Hungarian tracking -> three-frame motion ->
+// HOG detection (default preset, motion regions; every 2nd frame, searches near the tracks in between)
+// -> Kalman/Hungarian tracking -> three-frame motion ->
 // trajectory groups on the PETS ground plane -> roles -> DSST leader tracking -> Farneback direction.
 // Frames are decoded before timing and fed in video order, cycling over 300 frames (the frame counter
 // keeps increasing, so the trackers see one long video with a jump every 300 frames). Real time per
@@ -15,7 +16,7 @@
 #include "bodyrec/detection/hog_people_detector.h"
 #include "bodyrec/groups/group_pipeline.h"
 #include "bodyrec/io/ground_plane.h"
-#include "bodyrec/tracking/tracker.h"
+#include "bodyrec/tracking/detect_and_track.h"
 
 namespace {
 
@@ -42,13 +43,13 @@ void BM_GroupsPipeline(benchmark::State& state) {
   if (!loaded) return;
   const auto& frames = *loaded;
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
-  bodyrec::MultiTracker tracker;
+  bodyrec::DetectAndTrack tracking(detector, {});
   bodyrec::GroupPipeline pipeline({}, pets_ground());
   int n = 0;
   double leaders = 0;
   for (auto _ : state) {
     const cv::Mat& frame = frames[static_cast<size_t>(n) % frames.size()];
-    auto tracks = tracker.update(n, detector.detect(frame));
+    auto tracks = tracking.step(n, frame);
     leaders += static_cast<double>(pipeline.process(frame, n / kFps, tracks).leaders.size());
     ++n;
   }
@@ -60,9 +61,9 @@ void BM_GroupStagesOnly(benchmark::State& state) {
   if (!loaded) return;
   const auto& frames = *loaded;
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
-  bodyrec::MultiTracker tracker;
+  bodyrec::DetectAndTrack tracking(detector, {});
   std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
-  for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracker.update(static_cast<int>(i), detector.detect(frames[i])));
+  for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracking.step(static_cast<int>(i), frames[i]));
   bodyrec::GroupPipeline pipeline({}, pets_ground());
   int n = 0;
   for (auto _ : state) {

@@ -56,6 +56,12 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
       ->check(CLI::IsMember({"on", "off", "preset"}));
   sub.add_option("--nms-iou", o.nms_iou, "Non-maximum suppression IoU threshold");
+  sub.add_option("--local-margin", o.local_region_margin,
+                 "HOG search around a track (frames between full detections): the window grows by this "
+                 "fraction of its size on every side")->capture_default_str();
+  sub.add_option("--local-height-margin", o.local_height_margin,
+                 "HOG search around a track: heights within this fraction of the track's are searched")
+      ->capture_default_str();
 }
 
 std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool consecutive_frames) {
@@ -84,6 +90,8 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   if (o.motion != "preset") h.motion_roi = o.motion == "on";
   else if (!consecutive_frames) h.motion_roi = false;
   h.nms_iou = o.nms_iou;
+  h.local_region_margin = o.local_region_margin;
+  h.local_height_margin = o.local_height_margin;
   return std::make_unique<HogPeopleDetector>(h);
 }
 

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bodyrec/detection/hog_people_detector.h"
 #include "bodyrec/detection/people_detector.h"
 #include "bodyrec/io/frame_source.h"
 
@@ -32,6 +33,7 @@ struct DetectorOptions {
   double fhog_upsample = 1.0, fhog_threshold = 0.0;
   std::string hog_model = "default";
   double hit_threshold = 0, scale = 0, resize = 0, nms_iou = 0.4, motion_margin = 0;
+  double local_region_margin = HogOptions{}.local_region_margin, local_height_margin = HogOptions{}.local_height_margin;
   int win_stride = 0, padding = 0, group_threshold = 0, levels = 0, adapt_after = 0;
   std::vector<int> roi;
   std::string motion = "preset";  // "on", "off" or "preset"

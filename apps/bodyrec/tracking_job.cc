@@ -26,8 +26,12 @@ cv::Scalar id_color(int id) {
 void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
   TrackerOptions& t = o.tracker;
   sub.add_option("--detect-every", o.detect_every,
-                 "Run the detector on every Nth frame; the tracker predicts in between")
+                 "Run the full detector on every Nth frame (see --between for the frames in between)")
       ->check(CLI::PositiveNumber)->capture_default_str();
+  sub.add_option("--between", o.between,
+                 "Frames between full detections: 'local' searches only around the tracks, 'predict' only "
+                 "carries them by their Kalman prediction")
+      ->check(CLI::IsMember({"local", "predict"}))->capture_default_str();
   sub.add_option("--min-hits", t.min_hits, "Detections needed to confirm a track")->capture_default_str();
   sub.add_option("--max-age", t.max_age, "Frames a track survives without detections (occlusions)")
       ->capture_default_str();
@@ -55,8 +59,7 @@ void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
 TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, const TrackingJobOptions& options,
                               const OutputOptions& outputs, bool write_jsonl,
                               const std::function<void(const Frame&, const std::vector<TrackedPerson>&)>& on_frame) {
-  if (options.detect_every < 1) throw UsageError("--detect-every must be >= 1");
-  MultiTracker tracker(options.tracker);
+  DetectAndTrack tracking(detector, options);
   RunSinks sinks(outputs, write_jsonl, source.fps().value_or(25.0));
   auto& [jsonl, mot, annotated] = sinks;
 
@@ -65,14 +68,9 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
   Frame frame;
   while (source.read(frame)) {
     const auto t0 = std::chrono::steady_clock::now();
-    const bool detect = stats.frames % options.detect_every == 0;
-    std::vector<TrackedPerson> tracks;
-    if (detect) {
-      tracks = tracker.update(frame.index, detector.detect(frame.image));
-      ++stats.detected_frames;
-    } else {
-      tracks = tracker.predict_only(frame.index);
-    }
+    std::vector<TrackedPerson> tracks = tracking.step(frame.index, frame.image);
+    const bool detect = tracking.last_was_full();
+    if (detect) ++stats.detected_frames;
     // Same precision as every sink writes, so results re-read from a file score the same.
     for (auto& t : tracks) t.box = round_box_for_output(t.box);
     stats.processing_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -94,7 +92,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
       for (const auto& t : tracks)
         draw_labelled_box(canvas, t.box, id_color(t.id), std::to_string(t.id), t.state == TrackState::kLost ? 1 : 2);
       draw_caption(canvas, "frame " + std::to_string(frame.index) + "  tracks " + std::to_string(tracks.size()) +
-                               (detect ? "" : "  (predicted)"));
+                               (detect ? "" : options.between == "local" ? "  (searched near tracks)" : "  (predicted)"));
       annotated->write(frame.index, canvas);
     }
     if (on_frame) on_frame(frame, tracks);

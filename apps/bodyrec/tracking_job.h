@@ -7,15 +7,12 @@
 
 #include "bodyrec/detection/people_detector.h"
 #include "bodyrec/io/frame_source.h"
-#include "bodyrec/tracking/tracker.h"
+#include "bodyrec/tracking/detect_and_track.h"
 #include "common_options.h"
 
 namespace bodyrec::cli {
 
-struct TrackingJobOptions {
-  TrackerOptions tracker;
-  int detect_every = 1;  // run the detector on every Nth delivered frame; the tracker predicts in between
-};
+using TrackingJobOptions = DetectAndTrackOptions;
 
 // --detect-every and every TrackerOptions field (--min-hits, --max-age, --coast, --iou-gate, ...).
 void add_tracker_options(CLI::App& sub, TrackingJobOptions& options);

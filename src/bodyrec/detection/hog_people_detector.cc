@@ -55,6 +55,8 @@ void HogOptions::check() const {
   if (roi.width < 0 || roi.height < 0) throw UsageError("--roi must have a positive size");
   if (adapt_after < 0) throw UsageError("--adapt-after must be >= 0");
   if (!(adapt_margin >= 0 && adapt_margin < 1)) throw UsageError("--adapt-margin must be in [0, 1)");
+  if (!(local_region_margin >= 0 && local_region_margin <= 2)) throw UsageError("--local-region-margin must be in [0, 2]");
+  if (!(local_height_margin >= 0 && local_height_margin < 0.5)) throw UsageError("--local-height-margin must be in [0, 0.5)");
   motion.check();
 }
 
@@ -146,6 +148,19 @@ std::vector<Detection> HogPeopleDetector::search(const cv::Mat& frame, const cv:
   return out;
 }
 
+std::vector<Detection> HogPeopleDetector::search_regions(
+    const cv::Mat& frame, const std::vector<std::pair<cv::Rect, Search>>& plan) const {
+  // Regions are searched one after the other: HOG already spreads each search over the cores (by pyramid
+  // level); searching regions in parallel instead was slower (measured: 47 vs 32 ms per frame).
+  std::vector<Detection> detections;
+  for (const auto& [region, how] : plan)
+    for (Detection& d : search(frame, region, how)) {
+      d.box = clip_box(body_box(d.box), frame.size());
+      if (d.box.area() > 0) detections.push_back(d);
+    }
+  return finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
+}
+
 std::vector<Detection> HogPeopleDetector::detect(const cv::Mat& frame) {
   const cv::Rect whole(0, 0, frame.cols, frame.rows);
   const cv::Rect base = options_.roi.area() > 0 ? (options_.roi & whole) : whole;
@@ -157,19 +172,34 @@ std::vector<Detection> HogPeopleDetector::detect(const cv::Mat& frame) {
       if (r.area() > 0) regions.push_back(r);
     }
   }
-  // Regions are searched one after the other: HOG already spreads each search over the cores (by pyramid
-  // level); searching regions in parallel instead was slower (measured: 47 vs 32 ms per frame).
-  std::vector<Detection> detections;
-  for (const cv::Rect& region : regions)
-    for (Detection& d : search(frame, region, plan(region))) {
-      d.box = clip_box(body_box(d.box), frame.size());
-      if (d.box.area() > 0) detections.push_back(d);
-    }
-  auto result = finalize_detections(non_max_suppression(std::move(detections), options_.nms_iou));
+  std::vector<std::pair<cv::Rect, Search>> plan_all;
+  for (const cv::Rect& region : regions) plan_all.emplace_back(region, plan(region));
+  auto result = search_regions(frame, plan_all);
   if (heights_)
     for (const Detection& d : result)
       if (d.score >= options_.adapt_min_score) heights_->add(d.box.y + d.box.height, d.box.height);
   return result;
+}
+
+std::vector<Detection> HogPeopleDetector::detect_near(const cv::Mat& frame, const std::vector<Box>& expected) {
+  const cv::Rect whole(0, 0, frame.cols, frame.rows);
+  const double window_body_height = hog_for(options_.levels).winSize.height * options_.body_height;
+  const double lo = 1 - options_.local_height_margin, hi = 1 + options_.local_height_margin;
+  const int levels = static_cast<int>(std::ceil(std::log(hi / lo) / std::log(options_.scale))) + 1;
+  std::vector<std::pair<cv::Rect, Search>> plan_near;
+  for (const Box& b : expected) {
+    if (!(b.height > 1 && b.width > 1)) continue;
+    // The detector window around the body box, grown by the margin (the person may have moved).
+    const double ww = b.width / options_.body_width, wh = b.height / options_.body_height;
+    const double cx = b.x + b.width / 2, cy = b.y + b.height / 2;
+    const double wx = cx - options_.body_center_x * ww, wy = cy - options_.body_center_y * wh;
+    const double m = options_.local_region_margin;
+    const cv::Rect region = cv::Rect(cv::Point(static_cast<int>(std::floor(wx - m * ww)), static_cast<int>(std::floor(wy - m * wh))),
+                                     cv::Point(static_cast<int>(std::ceil(wx + (1 + m) * ww)), static_cast<int>(std::ceil(wy + (1 + m) * wh)))) & whole;
+    if (region.area() <= 0) continue;
+    plan_near.emplace_back(region, Search{window_body_height / (lo * b.height), levels});
+  }
+  return search_regions(frame, plan_near);
 }
 
 std::string HogPeopleDetector::describe() const {

@@ -30,6 +30,10 @@ struct HogOptions {
   bool motion_roi = false;        // search only around moving regions (see MotionRegions)
   MotionRegionOptions motion;
   double nms_iou = 0.4;           // our NMS after grouping
+  // detect_near: the search window around an expected body box grows by this fraction of its size on
+  // each side, and heights within local_height_margin of the expected height are searched.
+  double local_region_margin = 0.3;
+  double local_height_margin = 0.15;
   // Scene-adaptive scales (with motion regions, for a fixed camera): after `adapt_after` confident
   // detections, a PersonHeightModel limits each region's search to the heights people can have there
   // (within adapt_margin of the fitted line, inside [min_height, max_height]). 0 = off.
@@ -54,6 +58,9 @@ class HogPeopleDetector : public PeopleDetector {
  public:
   explicit HogPeopleDetector(const HogOptions& options);
   std::vector<Detection> detect(const cv::Mat& frame) override;
+  // Searches a window around each expected box, over heights within local_height_margin of its height.
+  // Motion regions and the height model are neither used nor updated.
+  std::vector<Detection> detect_near(const cv::Mat& frame, const std::vector<Box>& expected) override;
   std::string describe() const override;
 
   // Detector windows (frame pixels) and scores before shrinking to the body and before our NMS, with the
@@ -71,6 +78,8 @@ class HogPeopleDetector : public PeopleDetector {
   // How to search `region`: the configured scales, or the adaptive ones once the height model is ready.
   Search plan(const cv::Rect& region) const;
   std::vector<Detection> search(const cv::Mat& frame, const cv::Rect& region, const Search& how) const;
+  // Body boxes of the windows found in `regions` (clipped), after our NMS.
+  std::vector<Detection> search_regions(const cv::Mat& frame, const std::vector<std::pair<cv::Rect, Search>>& plan) const;
   const cv::HOGDescriptor& hog_for(int levels) const;
 
   HogOptions options_;

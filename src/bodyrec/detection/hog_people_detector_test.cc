@@ -1,9 +1,13 @@
 #include "bodyrec/detection/hog_people_detector.h"
 
+#include <filesystem>
+
 #include <gtest/gtest.h>
+#include <opencv2/videoio.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "test_support.h"
 
 namespace bodyrec {
 namespace {
@@ -55,6 +59,30 @@ TEST(HogPeopleDetector, BlankFrameHasNoPeopleAndTinyFrameDoesNotCrash) {
   HogPeopleDetector with_motion(hog_preset("default"));
   for (int i = 0; i < 3; ++i)
     EXPECT_TRUE(with_motion.detect(cv::Mat(240, 320, CV_8UC3, cv::Scalar(90, 90, 90))).empty());
+}
+
+TEST(HogPeopleDetector, DetectNearFindsThePeopleTheFullSearchFoundAndNothingElse) {
+  if (!std::filesystem::exists(testing::vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  cv::VideoCapture video(testing::vtest_path().string());
+  cv::Mat frame;
+  ASSERT_TRUE(video.read(frame));
+  HogPeopleDetector detector(hog_preset("default"));
+  const auto full = detector.detect(frame);  // first frame: the whole frame is searched
+  ASSERT_GE(full.size(), 5u);
+  std::vector<Box> expected;
+  for (const Detection& d : full) expected.push_back(d.box);
+  const auto near = detector.detect_near(frame, expected);
+  int refound = 0;
+  for (const Detection& d : full) {
+    double best = 0;
+    for (const Detection& n : near) best = std::max(best, iou(d.box, n.box));
+    refound += best >= 0.5;
+  }
+  EXPECT_GE(refound, static_cast<int>(full.size()) - 1);
+  EXPECT_LE(near.size(), full.size() + 1);
+  EXPECT_TRUE(detector.detect_near(frame, {}).empty());
+  // Degenerate and off-frame boxes are skipped, not searched.
+  EXPECT_TRUE(detector.detect_near(frame, {Box(0, 0, 0, 0), Box(5000, 5000, 40, 80)}).empty());
 }
 
 TEST(MergeOverlapping, MergesChainsAndKeepsDisjoint) {

@@ -63,7 +63,8 @@ void MultiTracker::advance_to(int frame_index) {
                 tracks_.end());
 }
 
-std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vector<Detection>& all_detections) {
+std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vector<Detection>& all_detections,
+                                                bool may_start_tracks) {
   advance_to(frame_index);
   std::vector<Detection> detections;
   for (const auto& d : all_detections)
@@ -132,7 +133,7 @@ std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vect
                                }),
                 tracks_.end());
   for (int d = 0; d < n_dets; ++d) {
-    if (det_used[d] || detections[d].score < options_.new_track_score) continue;
+    if (!may_start_tracks || det_used[d] || detections[d].score < options_.new_track_score) continue;
     auto track = std::make_unique<Track>(detections[d].box, options_.noise);
     if (options_.min_hits <= 1) {
       track->state = TrackState::kConfirmed;

@@ -63,7 +63,10 @@ class MultiTracker {
   // prediction advances by the difference); throws ProcessingError naming the frame otherwise.
   // ENSURES: returns the tracks to report on this frame: confirmed ones, and lost ones within
   //   `coast_frames` of their last match; sorted by id.
-  std::vector<TrackedPerson> update(int frame_index, const std::vector<Detection>& detections);
+  // `may_start_tracks` false: detections nobody claims are dropped (detections from a search around the
+  // existing tracks, which would only duplicate them).
+  std::vector<TrackedPerson> update(int frame_index, const std::vector<Detection>& detections,
+                                    bool may_start_tracks = true);
 
   // A frame without detection: every track is carried by its prediction. Returns as update() does.
   std::vector<TrackedPerson> predict_only(int frame_index);
