@@ -53,8 +53,12 @@ Gallery::Gallery(const std::string& path, const GalleryOptions& options) : path_
   } else if (std::filesystem::is_directory(path, ec)) {
     throw InputError(path + ": is a directory, not a gallery file");
   }
+  // A read-only gallery is still opened read-write when the file allows it, with query_only set: only a
+  // writable connection can checkpoint and remove the -wal/-shm files when it closes.
+  const bool writable = ::access(path.c_str(), W_OK) == 0;
   db_ = std::make_unique<sql::Database>(
-      path, options_.read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE);
+      path, options_.read_only && !writable ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE);
+  if (options_.read_only) db_->exec("PRAGMA query_only = ON");
   configure_connection();
   migrate();
   load_cache();
