@@ -75,7 +75,7 @@ void Gallery::configure_connection() {
   db_->exec("PRAGMA secure_delete = ON");
   if (options_.read_only) return;
   db_->exec("PRAGMA journal_mode = WAL");
-  db_->exec("PRAGMA synchronous = FULL");
+  db_->exec(options_.sync_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL");
 }
 
 void Gallery::migrate() {

@@ -32,6 +32,9 @@ struct GalleryOptions {
   bool read_only = false;    // no writes; the file must exist and have the current schema
   bool store_images = true;  // false: put_scan drops image and mask, keeps features (--no-images)
   int busy_timeout_ms = 10000;  // how long a write waits for another process's transaction
+  // synchronous=FULL (fsync per commit: survives power loss). false: NORMAL (survives a killed process,
+  // a power cut may lose the last commits); measured in bench/gallery_bench.cc.
+  bool sync_full = true;
   void check() const;           // UsageError for create together with read_only, negative timeout
 };
 

@@ -25,13 +25,15 @@ CREATE TABLE scans(
   id INTEGER PRIMARY KEY,
   user INTEGER NOT NULL REFERENCES users(id) ON DELETE CASCADE,
   view INTEGER NOT NULL CHECK (view BETWEEN 0 AND 7),
-  image_png BLOB,
-  mask_png BLOB,
   features BLOB NOT NULL,
   descriptor TEXT NOT NULL,
   descriptor_version INTEGER NOT NULL,
   quality REAL NOT NULL,
   time_ms INTEGER NOT NULL,
+  -- Pixels last: loading the feature cache reads a row only up to `quality` and never walks the
+  -- images' overflow pages.
+  image_png BLOB,
+  mask_png BLOB,
   UNIQUE (user, view));
 CREATE TABLE events(
   id INTEGER PRIMARY KEY,
