@@ -10,19 +10,20 @@
 #include "bodyrec/store/gallery_export.h"
 #include "bodyrec/store/gallery_json.h"
 #include "command.h"
+#include "gallery_options.h"
 
 namespace bodyrec::cli {
 namespace {
 
 struct GalleryCommand {
-  std::string path = "gallery.db";
+  GalleryCliOptions gallery;
   std::string user, dir, unseen_for;
   bool json = false, yes = false;
 
   Gallery open(bool read_only) const {
     GalleryOptions o;
     o.read_only = read_only;
-    return Gallery(path, o);
+    return Gallery(gallery.path, o);
   }
 };
 
@@ -45,7 +46,7 @@ void note_checkpoint(const EraseReport& r) {
 void list(const GalleryCommand& c) {
   Gallery g = c.open(true);
   const auto users = g.users();
-  std::printf("%s: %zu users\n", c.path.c_str(), users.size());
+  std::printf("%s: %zu users\n", c.gallery.path.c_str(), users.size());
   if (!users.empty())
     std::printf("%-5s %-12s %-23s %-5s %-20s %s\n", "user", "label", "views", "scans", "first seen", "last seen");
   nlohmann::json all = nlohmann::json::array();
@@ -55,7 +56,7 @@ void list(const GalleryCommand& c) {
                 format_utc(u.first_seen).c_str(), format_utc(u.last_seen).c_str());
     all.push_back(user_to_json(u));
   }
-  if (c.json) std::printf("%s\n", nlohmann::json({{"gallery", c.path}, {"users", all}}).dump().c_str());
+  if (c.json) std::printf("%s\n", nlohmann::json({{"gallery", c.gallery.path}, {"users", all}}).dump().c_str());
 }
 
 void show(const GalleryCommand& c) {
@@ -110,7 +111,7 @@ void forget(const GalleryCommand& c) {
   const UserId id = g.resolve_user(c.user);
   const EraseReport r = g.forget(id);
   std::printf("forgot user %lld: erased %s; %s vacuumed\n", static_cast<long long>(id), erased_summary(r).c_str(),
-              c.path.c_str());
+              c.gallery.path.c_str());
   note_checkpoint(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
@@ -118,37 +119,33 @@ void forget(const GalleryCommand& c) {
 void purge(const GalleryCommand& c) {
   Gallery g = c.open(false);
   if (!c.yes)
-    throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.path +
+    throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.gallery.path +
                      "; run it again with --yes");
   const EraseReport r = g.purge();
-  std::printf("purged %s: erased %zu users, %s; vacuumed\n", c.path.c_str(), r.users.size(),
+  std::printf("purged %s: erased %zu users, %s; vacuumed\n", c.gallery.path.c_str(), r.users.size(),
               erased_summary(r).c_str());
   note_checkpoint(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
 
 void prune(const GalleryCommand& c) {
-  const auto unseen = parse_duration(c.unseen_for);
-  if (!unseen)
-    throw UsageError("--unseen-for: expected a whole number with s, m, h, d or w (e.g. 30d, 12h), got '" +
-                     c.unseen_for + "'");
+  const auto unseen = parse_retention(c.unseen_for, "--unseen-for");
   Gallery g = c.open(false);
   const GalleryTime now = GalleryClock::now();
-  const EraseReport r = g.prune_unseen(*unseen, now);
+  const EraseReport r = g.prune_unseen(unseen, now);
   std::string ids;
   for (UserId u : r.users) ids += (ids.empty() ? "" : " ") + std::to_string(u);
   std::printf("pruned %zu users not seen since %s%s%s: erased %s\n", r.users.size(),
-              format_utc(now - *unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
+              format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
   note_checkpoint(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
 
 void add(CLI::App& app) {
   auto c = std::make_shared<GalleryCommand>();
-  CLI::App* gallery = app.add_subcommand("gallery", "Inspect and manage the re-identification gallery");
+  CLI::App* gallery = app.add_subcommand("gallery", "Inspect and manage the re-identification gallery (never creates one)");
   gallery->require_subcommand(1);
-  gallery->add_option("--gallery", c->path,
-                      "Gallery file (SQLite). Default: gallery.db in the working directory. Never created here");
+  add_gallery_path_option(*gallery, c->gallery);
   gallery->footer(
       "The gallery holds, per user, at most one partial scan per view (image, mask, features) and an event\n"
       "history; see README \"What is stored where\".\n"
