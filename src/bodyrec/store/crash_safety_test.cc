@@ -62,12 +62,16 @@ TEST(GalleryCrashSafety, SigkillDuringEnrolmentNeverLosesACommittedUser) {
       enrol_forever(path, fds[1], round * 1000);
     }
     ::close(fds[1]);
-    std::this_thread::sleep_for(std::chrono::microseconds(delay_us(rng)));
+    // Odd rounds: a random moment after fork (may hit file creation, schema or the first enrolment).
+    // Even rounds: wait for the first reported commit, then a random moment (mid-enrolment, whatever
+    // the machine's load).
+    UserId id = 0;
+    if (round % 2 == 0 && ::read(fds[0], &id, sizeof(id)) == sizeof(id)) reported.insert(id);
+    std::this_thread::sleep_for(std::chrono::microseconds(round % 2 == 0 ? delay_us(rng) / 8 : delay_us(rng)));
     ::kill(child, SIGKILL);
     int status = 0;
     ::waitpid(child, &status, 0);
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) ++killed_running;
-    UserId id = 0;
     while (::read(fds[0], &id, sizeof(id)) == sizeof(id)) reported.insert(id);
     ::close(fds[0]);
 
@@ -87,7 +91,7 @@ TEST(GalleryCrashSafety, SigkillDuringEnrolmentNeverLosesACommittedUser) {
     for (const User& u : g.users()) EXPECT_EQ(u.scans, 2) << "round " << round << ": user " << u.id;
   }
   EXPECT_EQ(killed_running, kRounds);
-  EXPECT_GT(reported.size(), 10u);  // the child did get work done between kills
+  EXPECT_GE(reported.size(), static_cast<size_t>(kRounds / 2));  // at least one per even round
   std::printf("[ crash    ] %d SIGKILL rounds, %zu committed users reported, all present, integrity ok\n",
               kRounds, reported.size());
 }

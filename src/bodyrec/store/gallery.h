@@ -41,6 +41,7 @@ struct GalleryOptions {
 // The schema version this build writes (PRAGMA user_version). Older files are migrated on open.
 constexpr int kGallerySchemaVersion = 1;
 
+// One Gallery object per thread (it owns one SQLite connection); several processes may share a file.
 class Gallery {
  public:
   // Opens (or creates) the gallery at `path` and loads the feature cache.
@@ -97,7 +98,8 @@ class Gallery {
   // ---- reads ----
   // The feature cache for one view: every stored scan of that view, features only. Loaded at open,
   // kept in step with this object's writes; no database access. Other processes' writes show after
-  // refresh().
+  // refresh(). The reference stays valid, but its contents change with this object's next write or
+  // refresh.
   const std::vector<GalleryEntry>& scans(View view) const { return cache_[static_cast<int>(view)]; }
   // Reloads the cache when another connection changed the file (PRAGMA data_version: cheap, no I/O
   // when nothing changed). Returns true when it reloaded. Call it once per frame or per decision.
