@@ -138,6 +138,12 @@ void Gallery::cache_put(const GalleryEntry& entry) {
   view.push_back(entry);
 }
 
+const GalleryEntry* Gallery::find(UserId user, View view) const {
+  for (const auto& e : cache_[static_cast<int>(view)])
+    if (e.user == user) return &e;
+  return nullptr;
+}
+
 void Gallery::cache_erase(UserId user) {
   for (auto& view : cache_)
     view.erase(std::remove_if(view.begin(), view.end(), [&](const GalleryEntry& e) { return e.user == user; }),

@@ -101,6 +101,10 @@ class Gallery {
   // refresh(). The reference stays valid, but its contents change with this object's next write or
   // refresh.
   const std::vector<GalleryEntry>& scans(View view) const { return cache_[static_cast<int>(view)]; }
+  // The cached scan of one user and view, or nullptr (no database access). The pipeline checks a
+  // candidate's quality against it before calling put_scan, which costs a commit (and an fsync) even
+  // when it keeps the stored scan.
+  const GalleryEntry* find(UserId user, View view) const;
   // Reloads the cache when another connection changed the file (PRAGMA data_version: cheap, no I/O
   // when nothing changed). Returns true when it reloaded. Call it once per frame or per decision.
   bool refresh();

@@ -122,6 +122,10 @@ TEST(Gallery, PutScanKeepsTheBestScanPerUserAndView) {
   other.descriptor_version = 2;
   EXPECT_EQ(g.put_scan(u, other), PutResult::kReplaced);
   EXPECT_EQ(g.put_scan(u, make_scan(View::SL, 0.3, 6)), PutResult::kInserted);
+  ASSERT_NE(g.find(u, View::SL), nullptr);
+  EXPECT_DOUBLE_EQ(g.find(u, View::SL)->quality, 0.3);
+  EXPECT_EQ(g.find(u, View::B), nullptr);
+  EXPECT_EQ(g.find(u + 1, View::SL), nullptr);
 
   const auto scans = g.user_scans(u);
   ASSERT_EQ(scans.size(), 2u);
