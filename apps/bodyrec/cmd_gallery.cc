@@ -1,0 +1,194 @@
+// `bodyrec gallery`: inspect and manage the persistent re-identification gallery (issue 6/7): list users,
+// show one, export one (right of access), forget one, purge all, prune by retention time. Never
+// creates a gallery: a missing file is an input error.
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/store/gallery.h"
+#include "bodyrec/store/gallery_export.h"
+#include "bodyrec/store/gallery_json.h"
+#include "command.h"
+#include "gallery_options.h"
+
+namespace bodyrec::cli {
+namespace {
+
+struct GalleryCommand {
+  GalleryCliOptions gallery;
+  std::string user, dir, unseen_for;
+  bool json = false, yes = false;
+
+  Gallery open(bool read_only) const {
+    GalleryOptions o;
+    o.read_only = read_only;
+    return Gallery(gallery.path, o);
+  }
+};
+
+std::string erased_summary(const EraseReport& r) {
+  return std::to_string(r.scans) + " scans (" + std::to_string(r.images) + " images, " + std::to_string(r.masks) +
+         " masks, their features), " + std::to_string(r.events) + " events";
+}
+
+nlohmann::json erase_json(const EraseReport& r) {
+  return {{"users", r.users},   {"scans", r.scans},   {"images", r.images},
+          {"masks", r.masks},   {"events", r.events}, {"checkpointed", r.checkpointed}};
+}
+
+void note_checkpoint(const EraseReport& r) {
+  if (!r.checkpointed)
+    std::printf("note: another process has the gallery open; the erased pages leave the -wal file at its "
+                "next checkpoint\n");
+}
+
+void list(const GalleryCommand& c) {
+  Gallery g = c.open(true);
+  const auto users = g.users();
+  std::printf("%s: %zu users\n", c.gallery.path.c_str(), users.size());
+  if (!users.empty())
+    std::printf("%-5s %-12s %-23s %-5s %-20s %s\n", "user", "label", "views", "scans", "first seen", "last seen");
+  nlohmann::json all = nlohmann::json::array();
+  for (const User& u : users) {
+    std::printf("%-5lld %-12s %-23s %-5d %-20s %s\n", static_cast<long long>(u.id),
+                u.label.empty() ? "-" : u.label.c_str(), views_column(u.views).c_str(), u.scans,
+                format_utc(u.first_seen).c_str(), format_utc(u.last_seen).c_str());
+    all.push_back(user_to_json(u));
+  }
+  if (c.json) std::printf("%s\n", nlohmann::json({{"gallery", c.gallery.path}, {"users", all}}).dump().c_str());
+}
+
+void show(const GalleryCommand& c) {
+  Gallery g = c.open(true);
+  const UserId id = g.resolve_user(c.user);
+  const User u = *g.user(id);
+  const auto scans = g.user_scans(id);
+  const auto events = g.events(id);
+  std::printf("user %lld%s\ncreated     %s\nfirst seen  %s\nlast seen   %s\n", static_cast<long long>(id),
+              u.label.empty() ? "" : (" \"" + u.label + "\"").c_str(), format_utc(u.created).c_str(),
+              format_utc(u.first_seen).c_str(), format_utc(u.last_seen).c_str());
+  std::printf("%zu scans\n%-5s %-8s %-5s %-5s %-28s %s\n", scans.size(), "view", "quality", "image", "mask",
+              "features", "time");
+  nlohmann::json j = {{"user", user_to_json(u)}};
+  j["scans"] = nlohmann::json::array();
+  for (const StoredScan& s : scans) {
+    const std::string features =
+        s.descriptor + " v" + std::to_string(s.descriptor_version) + " " + describe_matrix(s.features);
+    std::printf("%-5s %-8.3f %-5s %-5s %-28s %s\n", view_name(s.view), s.quality, s.image_png.empty() ? "no" : "yes",
+                s.mask_png.empty() ? "no" : "yes", features.c_str(), format_utc(s.time).c_str());
+    j["scans"].push_back(scan_to_json(s));
+  }
+  std::printf("%zu events\n", events.size());
+  j["events"] = nlohmann::json::array();
+  for (const Event& e : events) {
+    std::string line = format_utc(e.time) + "  " + event_kind_name(e.kind);
+    if (e.view) line += std::string("  view ") + view_name(*e.view);
+    if (e.score) line += "  score " + nlohmann::json(*e.score).dump();
+    if (e.track) line += "  track " + std::to_string(*e.track);
+    if (!e.source.empty()) line += "  source " + e.source;
+    std::printf("%s\n", line.c_str());
+    j["events"].push_back(event_to_json(e));
+  }
+  if (c.json) std::printf("%s\n", j.dump().c_str());
+}
+
+void export_command(const GalleryCommand& c) {
+  Gallery g = c.open(true);
+  const UserId id = g.resolve_user(c.user);
+  const ExportReport r = export_user(g, id, c.dir);
+  std::printf("exported user %lld to %s: %d scans (%d images, %d masks, their features in user.json), %d events\n",
+              static_cast<long long>(id), c.dir.c_str(), r.scans, r.images, r.masks, r.events);
+  if (c.json)
+    std::printf("%s\n", nlohmann::json({{"user", id}, {"dir", c.dir}, {"scans", r.scans}, {"images", r.images},
+                                        {"masks", r.masks}, {"events", r.events}, {"files", r.files}})
+                            .dump()
+                            .c_str());
+}
+
+void forget(const GalleryCommand& c) {
+  Gallery g = c.open(false);
+  const UserId id = g.resolve_user(c.user);
+  const EraseReport r = g.forget(id);
+  std::printf("forgot user %lld: erased %s; %s vacuumed\n", static_cast<long long>(id), erased_summary(r).c_str(),
+              c.gallery.path.c_str());
+  note_checkpoint(r);
+  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+}
+
+void purge(const GalleryCommand& c) {
+  Gallery g = c.open(false);
+  if (!c.yes)
+    throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.gallery.path +
+                     "; run it again with --yes");
+  const EraseReport r = g.purge();
+  std::printf("purged %s: erased %zu users, %s; vacuumed\n", c.gallery.path.c_str(), r.users.size(),
+              erased_summary(r).c_str());
+  note_checkpoint(r);
+  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+}
+
+void prune(const GalleryCommand& c) {
+  const auto unseen = parse_retention(c.unseen_for, "--unseen-for");
+  Gallery g = c.open(false);
+  const GalleryTime now = GalleryClock::now();
+  const EraseReport r = g.prune_unseen(unseen, now);
+  std::string ids;
+  for (UserId u : r.users) ids += (ids.empty() ? "" : " ") + std::to_string(u);
+  std::printf("pruned %zu users not seen since %s%s%s: erased %s\n", r.users.size(),
+              format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
+  note_checkpoint(r);
+  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+}
+
+void add(CLI::App& app) {
+  auto c = std::make_shared<GalleryCommand>();
+  CLI::App* gallery = app.add_subcommand("gallery", "Inspect and manage the re-identification gallery (never creates one)");
+  gallery->require_subcommand(1);
+  add_gallery_path_option(*gallery, c->gallery);
+  gallery->footer(
+      "The gallery holds, per user, at most one partial scan per view (image, mask, features) and an event\n"
+      "history; see README \"What is stored where\".\n"
+      "Examples: bodyrec gallery list\n"
+      "          bodyrec gallery --gallery lab.db show 3 --json\n"
+      "          bodyrec gallery export 3 user3/\n"
+      "          bodyrec gallery forget 3\n"
+      "          bodyrec gallery prune --unseen-for 30d");
+
+  CLI::App* sub = gallery->add_subcommand("list", "Users with the views they have, scan counts, first/last seen");
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {gallery, users: [{id, label, views, ...}]}");
+  sub->callback([c] { list(*c); });
+
+  sub = gallery->add_subcommand("show", "One user's scans (view, quality, time) and event history");
+  sub->add_option("USER", c->user, "User id or label")->required();
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {user, scans, events}");
+  sub->callback([c] { show(*c); });
+
+  sub = gallery->add_subcommand("export", "Write a user's images, masks and a JSON of everything stored into DIR");
+  sub->add_option("USER", c->user, "User id or label")->required();
+  sub->add_option("DIR", c->dir, "Directory to write (created, mode 0700)")->required();
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {user, dir, scans, images, masks, events, files}");
+  sub->footer("Example: bodyrec gallery export 3 user3/  (writes F-image.png, F-mask.png, ..., user.json)");
+  sub->callback([c] { export_command(*c); });
+
+  sub = gallery->add_subcommand("forget", "Erase every image, feature and event of one user (file vacuumed)");
+  sub->add_option("USER", c->user, "User id or label")->required();
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  sub->callback([c] { forget(*c); });
+
+  sub = gallery->add_subcommand("purge", "Erase every user (asks for --yes)");
+  sub->add_flag("--yes", c->yes, "Really erase everything");
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  sub->callback([c] { purge(*c); });
+
+  sub = gallery->add_subcommand("prune", "Retention: erase users not seen for a given time");
+  sub->add_option("--unseen-for", c->unseen_for, "Whole number with s, m, h, d or w, e.g. 30d or 12h")->required();
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  sub->footer("Example: bodyrec gallery prune --unseen-for 30d");
+  sub->callback([c] { prune(*c); });
+}
+
+const bool registered = register_command({"", 90, add});
+
+}  // namespace
+}  // namespace bodyrec::cli

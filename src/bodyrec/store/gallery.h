@@ -1,0 +1,155 @@
+// The persistent biometric gallery of re-identification (issue 6, thesis Ch6): one SQLite file holding
+// users, at most one partial scan per (user, view) and an event history, plus an in-memory feature
+// cache so matching a probe needs no database round-trip.
+//
+// Crash safety and sharing (issue 7): WAL journal, synchronous=FULL, every write one transaction
+// (BEGIN IMMEDIATE), a busy timeout so two processes on one file wait for each other instead of failing.
+// FULL rather than NORMAL: in WAL mode NORMAL already survives a killed process, but a power cut could
+// lose the last commits; gallery writes are rare (per enrolment event, not per frame), so the fsync per
+// commit is cheap (bench/gallery_bench.cc) and a robot whose battery dies keeps every reported enrolment.
+//
+// Privacy: a new file is created mode 0600 whatever the umask (SQLite gives its -wal/-shm the same
+// mode); store_images=false keeps features only; forget/purge/prune run with secure_delete, then VACUUM
+// and a truncating WAL checkpoint, so erased images and features leave no bytes in the .db or -wal.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bodyrec/store/gallery_types.h"
+
+namespace bodyrec {
+
+namespace sql {
+class Database;
+}
+
+struct GalleryOptions {
+  bool create = false;       // create the file when missing (else InputError naming it)
+  bool read_only = false;    // no writes; the file must exist and have the current schema
+  bool store_images = true;  // false: put_scan drops image and mask, keeps features (--no-images)
+  int busy_timeout_ms = 10000;  // how long a write waits for another process's transaction
+  // synchronous=FULL (fsync per commit: survives power loss). false: NORMAL (survives a killed process,
+  // a power cut may lose the last commits); measured in bench/gallery_bench.cc.
+  bool sync_full = true;
+  void check() const;           // UsageError for create together with read_only, negative timeout
+};
+
+// The schema version this build writes (PRAGMA user_version). Older files are migrated on open.
+constexpr int kGallerySchemaVersion = 1;
+
+// One Gallery object per thread (it owns one SQLite connection); several processes may share a file.
+class Gallery {
+ public:
+  // Opens (or creates) the gallery at `path` and loads the feature cache.
+  // Throws InputError naming the file when it is missing (without create), not an SQLite database,
+  // another application's database, or from a newer schema ("... schema version N, this bodyrec reads
+  // up to 1"). Older schemas are upgraded in one transaction (not in read_only mode: InputError).
+  Gallery(const std::string& path, const GalleryOptions& options = {});
+  ~Gallery();
+  Gallery(const Gallery&) = delete;
+  Gallery& operator=(const Gallery&) = delete;
+
+  const std::string& path() const { return path_; }
+  const GalleryOptions& options() const { return options_; }
+
+  // ---- writes: each one transaction (or part of the caller's transaction(), see below) ----
+  // A new user seen first at `time`; returns its id. Ids are never reused, even after forget.
+  UserId add_user(const std::string& label = "", GalleryTime time = GalleryClock::now());
+  // Keeps the best scan per (user, view). ENSURES: inserted when the view had none; replaced when
+  // scan.quality is strictly higher than the stored one's, or the stored one has another descriptor
+  // name/version (its features are useless to the current matcher); otherwise kept unchanged. Also
+  // moves the user's last_seen forward to scan.time. REQUIRES: the user exists (else InputError),
+  // scan.features non-empty and quality finite (else ProcessingError).
+  PutResult put_scan(UserId user, const PartialScan& scan);
+  // Appends an event (id assigned, returned); moves the user's last_seen forward to event.time.
+  int64_t log_event(const Event& event);
+  // add_user + put_scan + an `enrolled` event, in one transaction.
+  UserId enrol(const PartialScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
+               const std::string& source = "");
+  void set_label(UserId user, const std::string& label);
+
+  // Erases every scan (image, mask, features), event and the user row itself, then scrubs the file
+  // (secure_delete + VACUUM + WAL checkpoint). A `forgotten` event without a user id records that an
+  // erasure happened. InputError when the user does not exist.
+  EraseReport forget(UserId user);
+  // Erases every user, scan and event; same scrubbing.
+  EraseReport purge();
+  // Retention: forgets every user whose last_seen is before now - unseen_for.
+  EraseReport prune_unseen(std::chrono::seconds unseen_for, GalleryTime now = GalleryClock::now());
+
+  // Runs `body` as one transaction: the writes inside it commit together or not at all (the pipeline
+  // uses it to enrol a user with several views atomically). Nested calls join the outer transaction.
+  template <typename F>
+  void transaction(F&& body) {
+    begin();
+    try {
+      body();
+    } catch (...) {
+      rollback();
+      throw;
+    }
+    commit();
+  }
+
+  // ---- reads ----
+  // The feature cache for one view: every stored scan of that view, features only. Loaded at open,
+  // kept in step with this object's writes; no database access. Other processes' writes show after
+  // refresh(). The reference stays valid, but its contents change with this object's next write or
+  // refresh.
+  const std::vector<GalleryEntry>& scans(View view) const { return cache_[static_cast<int>(view)]; }
+  // The cached scan of one user and view, or nullptr (no database access). The pipeline checks a
+  // candidate's quality against it before calling put_scan, which costs a commit (and an fsync) even
+  // when it keeps the stored scan.
+  const GalleryEntry* find(UserId user, View view) const;
+  // Reloads the cache when another connection changed the file (PRAGMA data_version: cheap, no I/O
+  // when nothing changed). Returns true when it reloaded. Call it once per frame or per decision.
+  bool refresh();
+
+  std::optional<User> user(UserId id);
+  std::vector<User> users();  // by id
+  // Accepts a numeric id or an exact label (unique); InputError naming the gallery otherwise.
+  UserId resolve_user(const std::string& id_or_label);
+  std::vector<StoredScan> user_scans(UserId user);  // with pixels, in view order
+  std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
+  int user_count();
+
+  // PRAGMA integrity_check's first line ("ok" when healthy).
+  std::string integrity_check();
+
+ private:
+  void configure_connection();
+  void migrate();
+  void load_cache();
+  void begin();
+  void commit();
+  void rollback();
+  void rollback_now();
+  void scrub(EraseReport& report);
+  void erase_user(UserId user, EraseReport& report);
+  void touch(UserId user, GalleryTime time);
+  void cache_put(const GalleryEntry& entry);
+  void cache_erase(UserId user);
+
+  std::string path_;
+  GalleryOptions options_;
+  std::unique_ptr<sql::Database> db_;
+  std::array<std::vector<GalleryEntry>, kViewCount> cache_;
+  int64_t data_version_ = 0;
+  int depth_ = 0;                 // nesting of transaction()/internal writes
+  bool cache_dirty_ = false;
+  bool aborted_ = false;          // an inner write failed: the outer transaction must roll back
+};
+
+// Helpers shared by the gallery and its users (CLI, tests).
+int64_t to_unix_ms(GalleryTime time);
+GalleryTime from_unix_ms(int64_t ms);
+// "2026-11-23T13:05:00Z"
+std::string format_utc(GalleryTime time);
+// "30d", "12h", "45m", "90s", "2w" -> seconds; InputError-free: nullopt for anything else.
+std::optional<std::chrono::seconds> parse_duration(const std::string& text);
+
+}  // namespace bodyrec

@@ -1,0 +1,94 @@
+// Plain data kept in the biometric gallery (thesis Ch6, 3D Partial Scans Models): users, their best scan
+// per view, and the event history. See gallery.h for the class that stores them.
+#pragma once
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "bodyrec/reid/view.h"
+
+namespace bodyrec {
+
+// Wall-clock times; stored as integer milliseconds since the Unix epoch (UTC).
+using GalleryClock = std::chrono::system_clock;
+using GalleryTime = GalleryClock::time_point;
+using UserId = int64_t;
+
+// One partial scan as the caller hands it to the gallery.
+struct PartialScan {
+  View view = View::F;
+  cv::Mat image;     // background-removed person, 8-bit BGR or grey; may be empty (features only)
+  cv::Mat mask;      // 8-bit foreground mask (0 / non-zero) of the same size; may be empty
+  cv::Mat features;  // the matcher's descriptor(s): any continuous cv::Mat; required, non-empty
+  std::string descriptor;      // which matcher made `features`, e.g. "kaze" or "stripes-xqda"
+  int descriptor_version = 1;  // bump when the same matcher's features change meaning
+  // Higher is better; only compared between scans of one user and view. Callers compute it from how
+  // sharp and how complete the body image is; scan_quality() in scan_quality.h is the default.
+  double quality = 0;
+  GalleryTime time = GalleryClock::now();
+};
+
+// What put_scan did with a scan.
+enum class PutResult { kInserted, kReplaced, kKept };
+const char* put_result_name(PutResult result);
+
+// One scan as loaded for matching: features only, no pixels (the feature cache holds these).
+struct GalleryEntry {
+  UserId user = 0;
+  View view = View::F;
+  cv::Mat features;
+  std::string descriptor;
+  int descriptor_version = 1;
+  double quality = 0;
+};
+
+// One stored scan with its encoded pixels (show, export).
+struct StoredScan {
+  UserId user = 0;
+  View view = View::F;
+  std::vector<unsigned char> image_png;  // empty when stored without images
+  std::vector<unsigned char> mask_png;
+  cv::Mat features;
+  std::string descriptor;
+  int descriptor_version = 1;
+  double quality = 0;
+  GalleryTime time;
+};
+
+struct User {
+  UserId id = 0;
+  std::string label;  // optional name given by an operator; "" when none
+  GalleryTime created, first_seen, last_seen;
+  std::array<bool, kViewCount> views{};  // which views have a scan (index = View value)
+  int scans = 0;
+};
+
+enum class EventKind { kEnrolled, kRecognised, kViewAdded, kScanReplaced, kLeft, kForgotten, kPruned };
+const char* event_kind_name(EventKind kind);
+std::optional<EventKind> parse_event_kind(const std::string& name);
+
+struct Event {
+  int64_t id = 0;                // assigned by the gallery
+  std::optional<UserId> user;    // none for forgotten/pruned records (they name nobody)
+  EventKind kind = EventKind::kRecognised;
+  std::optional<double> score;   // match score for recognised
+  std::optional<View> view;
+  GalleryTime time = GalleryClock::now();
+  std::optional<int64_t> track;  // tracking id of the body in the source
+  std::string source;            // recording or camera the event came from; "" when unknown
+};
+
+// What forget/purge/prune erased.
+struct EraseReport {
+  std::vector<UserId> users;
+  int scans = 0, images = 0, masks = 0, events = 0;
+  bool checkpointed = true;  // false when another process kept old pages in the WAL (see gallery.h)
+};
+
+}  // namespace bodyrec

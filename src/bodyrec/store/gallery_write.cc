@@ -1,0 +1,226 @@
+// Gallery writes: every public write is one transaction (or joins the caller's transaction()), and the
+// feature cache follows each write so matching never needs to read the file.
+#include <cmath>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/store/feature_blob.h"
+#include "bodyrec/store/gallery.h"
+#include "bodyrec/store/sqlite.h"
+
+namespace bodyrec {
+
+namespace {
+
+std::vector<unsigned char> encode_png(const cv::Mat& image, const std::string& what) {
+  std::vector<unsigned char> png;
+  if (image.empty()) return png;
+  if (!cv::imencode(".png", image, png)) throw ProcessingError(what + ": cannot encode PNG");
+  return png;
+}
+
+int64_t count(sql::Database& db, const char* sql, UserId user) {
+  sql::Statement s(db, sql);
+  s.bind(1, static_cast<int64_t>(user));
+  return s.step() ? s.column_int(0) : 0;
+}
+
+}  // namespace
+
+void Gallery::touch(UserId user, GalleryTime time) {
+  sql::Statement s(*db_,
+                   "UPDATE users SET last_seen_ms = max(last_seen_ms, ?1), first_seen_ms = min(first_seen_ms, ?1) "
+                   "WHERE id = ?2");
+  s.bind(1, to_unix_ms(time)).bind(2, static_cast<int64_t>(user)).run();
+}
+
+UserId Gallery::add_user(const std::string& label, GalleryTime time) {
+  UserId id = 0;
+  transaction([&] {
+    sql::Statement s(*db_,
+                     "INSERT INTO users(label, created_ms, first_seen_ms, last_seen_ms) VALUES (?1, ?2, ?3, ?3)");
+    s.bind(1, label).bind(2, to_unix_ms(GalleryClock::now())).bind(3, to_unix_ms(time)).run();
+    id = db_->last_insert_rowid();
+  });
+  return id;
+}
+
+void Gallery::set_label(UserId user, const std::string& label) {
+  transaction([&] {
+    sql::Statement s(*db_, "UPDATE users SET label = ?1 WHERE id = ?2");
+    s.bind(1, label).bind(2, static_cast<int64_t>(user)).run();
+    if (db_->changes() == 0) throw InputError(path_ + ": no user " + std::to_string(user));
+  });
+}
+
+PutResult Gallery::put_scan(UserId user, const PartialScan& scan) {
+  const std::string what = path_ + ": user " + std::to_string(user) + " view " + view_name(scan.view);
+  if (scan.features.empty()) throw ProcessingError(what + ": scan has no features");
+  if (!std::isfinite(scan.quality)) throw ProcessingError(what + ": scan quality is not finite");
+  // Encode outside the transaction: the write lock is held only for the SQL.
+  const auto features = store::encode_features(scan.features);
+  std::vector<unsigned char> image, mask;
+  if (options_.store_images) {
+    image = encode_png(scan.image, what);
+    mask = encode_png(scan.mask, what);
+  }
+  PutResult result = PutResult::kKept;
+  transaction([&] {
+    if (count(*db_, "SELECT count(*) FROM users WHERE id = ?1", user) == 0)
+      throw InputError(path_ + ": no user " + std::to_string(user));
+    sql::Statement old(*db_,
+                       "SELECT quality, descriptor, descriptor_version FROM scans WHERE user = ?1 AND view = ?2");
+    old.bind(1, static_cast<int64_t>(user)).bind(2, static_cast<int64_t>(scan.view));
+    const char* sql = nullptr;
+    if (!old.step()) {
+      result = PutResult::kInserted;
+      sql = "INSERT INTO scans(user, view, image_png, mask_png, features, descriptor, descriptor_version, "
+            "quality, time_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)";
+    } else if (scan.quality > old.column_double(0) || old.column_text(1) != scan.descriptor ||
+               old.column_int(2) != scan.descriptor_version) {
+      result = PutResult::kReplaced;
+      sql = "UPDATE scans SET image_png = ?3, mask_png = ?4, features = ?5, descriptor = ?6, "
+            "descriptor_version = ?7, quality = ?8, time_ms = ?9 WHERE user = ?1 AND view = ?2";
+    }
+    old.reset();
+    if (sql) {
+      sql::Statement s(*db_, sql);
+      s.bind(1, static_cast<int64_t>(user)).bind(2, static_cast<int64_t>(scan.view));
+      s.bind_blob(3, image).bind_blob(4, mask).bind_blob(5, features);
+      s.bind(6, scan.descriptor).bind(7, static_cast<int64_t>(scan.descriptor_version));
+      s.bind(8, scan.quality).bind(9, to_unix_ms(scan.time)).run();
+    }
+    touch(user, scan.time);
+    if (sql) {
+      GalleryEntry entry;
+      entry.user = user;
+      entry.view = scan.view;
+      entry.features = scan.features.clone();
+      entry.descriptor = scan.descriptor;
+      entry.descriptor_version = scan.descriptor_version;
+      entry.quality = scan.quality;
+      cache_put(entry);
+    }
+  });
+  return result;
+}
+
+int64_t Gallery::log_event(const Event& event) {
+  int64_t id = 0;
+  transaction([&] {
+    if (event.user && count(*db_, "SELECT count(*) FROM users WHERE id = ?1", *event.user) == 0)
+      throw InputError(path_ + ": event for unknown user " + std::to_string(*event.user));
+    sql::Statement s(*db_,
+                     "INSERT INTO events(user, kind, score, view, time_ms, track, source) "
+                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+    s.bind(1, event.user ? std::optional<int64_t>(*event.user) : std::nullopt);
+    s.bind(2, std::string(event_kind_name(event.kind))).bind(3, event.score);
+    s.bind(4, event.view ? std::optional<int64_t>(static_cast<int64_t>(*event.view)) : std::nullopt);
+    s.bind(5, to_unix_ms(event.time)).bind(6, event.track).bind(7, event.source).run();
+    id = db_->last_insert_rowid();
+    if (event.user) touch(*event.user, event.time);
+  });
+  return id;
+}
+
+UserId Gallery::enrol(const PartialScan& scan, const std::string& label, std::optional<int64_t> track,
+                      const std::string& source) {
+  UserId id = 0;
+  transaction([&] {
+    id = add_user(label, scan.time);
+    put_scan(id, scan);
+    Event e;
+    e.user = id;
+    e.kind = EventKind::kEnrolled;
+    e.view = scan.view;
+    e.time = scan.time;
+    e.track = track;
+    e.source = source;
+    log_event(e);
+  });
+  return id;
+}
+
+void Gallery::erase_user(UserId user, EraseReport& report) {
+  report.users.push_back(user);
+  report.scans += static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1", user));
+  report.images +=
+      static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1 AND image_png IS NOT NULL", user));
+  report.masks +=
+      static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1 AND mask_png IS NOT NULL", user));
+  report.events += static_cast<int>(count(*db_, "SELECT count(*) FROM events WHERE user = ?1", user));
+  for (const char* sql : {"DELETE FROM events WHERE user = ?1", "DELETE FROM scans WHERE user = ?1",
+                          "DELETE FROM users WHERE id = ?1"}) {
+    sql::Statement s(*db_, sql);
+    s.bind(1, static_cast<int64_t>(user)).run();
+  }
+  cache_erase(user);
+}
+
+// Deleted rows are already zeroed by secure_delete, but their old pages may still sit in the WAL and
+// the file keeps its size: VACUUM rewrites the database compactly, then a TRUNCATE checkpoint copies
+// the WAL into the file and empties the WAL. A reader in another process can keep the checkpoint from
+// finishing; the report says so (the pages go at the next checkpoint).
+void Gallery::scrub(EraseReport& report) {
+  if (depth_ > 0) throw ProcessingError(path_ + ": forget/purge/prune cannot run inside a transaction");
+  db_->exec("VACUUM");
+  sql::Statement s(*db_, "PRAGMA wal_checkpoint(TRUNCATE)");
+  report.checkpointed = s.step() && s.column_int(0) == 0;
+}
+
+EraseReport Gallery::forget(UserId user) {
+  if (depth_ > 0) throw ProcessingError(path_ + ": forget cannot run inside a transaction");
+  EraseReport report;
+  transaction([&] {
+    if (count(*db_, "SELECT count(*) FROM users WHERE id = ?1", user) == 0)
+      throw InputError(path_ + ": no user " + std::to_string(user));
+    erase_user(user, report);
+    Event e;
+    e.kind = EventKind::kForgotten;  // records that an erasure happened, not whose
+    log_event(e);
+  });
+  scrub(report);
+  return report;
+}
+
+EraseReport Gallery::purge() {
+  if (depth_ > 0) throw ProcessingError(path_ + ": purge cannot run inside a transaction");
+  EraseReport report;
+  transaction([&] {
+    sql::Statement ids(*db_, "SELECT id FROM users ORDER BY id");
+    while (ids.step()) report.users.push_back(ids.column_int(0));
+    ids.reset();
+    report.scans = static_cast<int>(db_->query_int("SELECT count(*) FROM scans"));
+    report.images = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE image_png IS NOT NULL"));
+    report.masks = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE mask_png IS NOT NULL"));
+    report.events = static_cast<int>(db_->query_int("SELECT count(*) FROM events"));
+    db_->exec("DELETE FROM events; DELETE FROM scans; DELETE FROM users;");
+    for (auto& view : cache_) view.clear();
+  });
+  scrub(report);
+  return report;
+}
+
+EraseReport Gallery::prune_unseen(std::chrono::seconds unseen_for, GalleryTime now) {
+  if (depth_ > 0) throw ProcessingError(path_ + ": prune cannot run inside a transaction");
+  EraseReport report;
+  transaction([&] {
+    std::vector<UserId> stale;
+    sql::Statement s(*db_, "SELECT id FROM users WHERE last_seen_ms < ?1 ORDER BY id");
+    s.bind(1, to_unix_ms(now - unseen_for));
+    while (s.step()) stale.push_back(s.column_int(0));
+    s.reset();
+    for (UserId u : stale) erase_user(u, report);
+    if (!stale.empty()) {
+      Event e;
+      e.kind = EventKind::kPruned;
+      e.time = now;
+      log_event(e);
+    }
+  });
+  if (!report.users.empty()) scrub(report);
+  return report;
+}
+
+}  // namespace bodyrec
