@@ -6,7 +6,7 @@ VTEST    ?= /usr/share/doc/opencv-doc/examples/data/vtest.avi
 CMAKE_FLAGS ?=
 BIN      := $(BUILD)/bin/bodyrec
 
-.PHONY: all deps configure build run test test-data bench clean
+.PHONY: all deps configure build run test test-asan test-data bench clean
 
 all: build
 
@@ -36,8 +36,19 @@ run: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The whole suite again, built with AddressSanitizer + UndefinedBehaviorSanitizer (own build folder; any
+# report fails the test that triggered it). ASAN_CTEST_ARGS selects tests, e.g. ASAN_CTEST_ARGS="-LE data".
+ASAN_BUILD ?= build-asan
+ASAN_CTEST_ARGS ?=
+test-asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYREC_WERROR=ON -DBODYREC_SANITIZE=ON \
+	    -DBODYREC_BUILD_BENCH=OFF $(CMAKE_FLAGS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS)
+
 bench: build
 	@for b in $(BUILD)/bin/*_bench; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD)
