@@ -111,6 +111,8 @@ void add(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("orient", "Score body orientation views against a synthetic recording's truth");
   sub->add_option("REC", command->input, "Recording with a truth stream (bodyrec synth)")->required();
   add_orient_options(*sub, command->options);
+  sub->add_flag("--face-oracle", command->options.face_oracle,
+                "Face flag from the truth yaw (|yaw| < 90) instead of the face detector: measures the view rule alone");
   sub->add_option("--min-visible", command->min_visible, "Bodies with a smaller visible fraction are not scored")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #include "orient_job.h"
 
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <optional>
 
@@ -172,7 +173,10 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
     }
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t b = 0; b < refs.size(); ++b) {
-      out.bodies[b].view = estimator.estimate(f, refs[b]);
+      std::optional<bool> oracle;
+      if (options.face_oracle && f.truth && out.bodies[b].truth >= 0)
+        oracle = std::abs(f.truth->people[static_cast<size_t>(out.bodies[b].truth)].yaw_deg) < 90;
+      out.bodies[b].view = estimator.estimate(f, refs[b], oracle);
       out.bodies[b].face = estimator.last_face();
     }
     out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

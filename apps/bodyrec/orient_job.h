@@ -20,6 +20,7 @@ struct OrientCliOptions {
   std::string views = "robust";
   bool no_faces = false;
   bool depth_only = false;  // ignore skeletons: orient from the body pixels' depth
+  bool face_oracle = false; // eval only: the face flag from the truth yaw (|yaw| < 90) instead of the detector
   int max_frames = -1;
   SegmentCliOptions seg;
 };

@@ -60,6 +60,7 @@ ViewMethod parse_view_method(const std::string& name) {
 }
 
 void OrientationOptions::check() const {
+  if (!(turn_gain >= 0 && turn_gain <= 1)) throw UsageError("orientation options: turn_gain must be in 0..1");
   for (double w : {sides_weight, face_weight, no_face_weight, motion_weight, continuity_weight, min_speed_mps, forget_s})
     if (!(w >= 0)) throw UsageError("orientation options: weights, speeds and times must be >= 0");
   if (!(smoothing > 0 && smoothing <= 1)) throw UsageError("orientation options: smoothing must be in (0, 1]");
@@ -145,6 +146,7 @@ cv::Rect2d head_region(const RecordingMeta& meta, const RgbdFrame& frame, const 
 
 struct OrientationEstimator::Track {
   double yaw = 0;
+  double rate = 0;    // deg/s, the alpha-beta filter's turning rate
   double belief = 0;  // accumulated evidence (>= 0) that `yaw`'s half (not yaw + 180) is the right one
   double last_time = -1e9;
   std::deque<std::pair<double, cv::Vec2d>> path;  // time, ground position (X, Z)
@@ -166,8 +168,14 @@ std::optional<bool> OrientationEstimator::face_flag(const RgbdFrame& frame, cons
   return last_face_.face;
 }
 
-ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRef& ref) {
-  const std::optional<bool> face = face_flag(frame, ref);
+ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRef& ref, std::optional<bool> known_face) {
+  std::optional<bool> face;
+  if (known_face) {
+    last_face_ = {true, *known_face, {}};
+    face = known_face;
+  } else {
+    face = face_flag(frame, ref);
+  }
   if (options_.method == ViewMethod::kThesis) {
     if (!ref.body) {
       ViewEstimate e;
@@ -247,7 +255,16 @@ ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRe
     belief = -belief;
     turned = true;
   }
-  if (continuing && !turned) yaw = wrap_deg(t.yaw + options_.smoothing * wrap_deg(yaw - t.yaw));
+  // Alpha-beta filter on the circle: follows a steady turn without lag, smooths jitter.
+  if (continuing && !turned) {
+    const double dt = std::max(1e-3, now - t.last_time);
+    const double predicted = t.yaw + t.rate * dt;
+    const double residual = wrap_deg(yaw - predicted);
+    yaw = wrap_deg(predicted + options_.smoothing * residual);
+    t.rate += options_.turn_gain * residual / dt;
+  } else {
+    t.rate = 0;
+  }
   t.yaw = yaw;
   t.belief = belief;
   t.last_time = now;

@@ -4,11 +4,12 @@
 // Robust: the body's axis comes from the skeleton (shoulder and hip lines, skeleton_yaw_deg) or, without
 // a skeleton, from depth alone (principal axis of the horizontal torso points of the body's pixels, which
 // gives the axis up to 180 degrees). Which way the body faces is then decided between the two candidates
-// yaw and yaw + 180 by summed evidence: the skeleton's own left/right (when it has one), a frontal face
-// in the head region of the colour image and the walking direction (people walk forwards), accumulated
-// over the track's frames (continuity; capped so that consistent contrary evidence turns it round). The chosen yaw is smoothed by a small circular filter; the view is the
-// nearest 45-degree sector (orientation.h) with a confidence 0..1 from the axis quality, the evidence
-// margin and the distance to the sector border.
+// yaw and yaw + 180 by evidence: the skeleton's own left/right (when it has one), a frontal face in the
+// head region of the colour image, and the walking direction (people walk forwards), accumulated over
+// the track's frames (continuity; capped so that consistent contrary evidence turns it round). The yaw
+// is smoothed by an alpha-beta filter on the circle (no lag on a steady turn); the view is the nearest
+// 45-degree sector (orientation.h) with a confidence 0..1 from the axis quality, the accumulated evidence
+// and the distance to the sector border.
 //
 //   OrientationEstimator est(reader.meta());
 //   for (RgbdFrame f; reader.read(f);)
@@ -44,10 +45,11 @@ struct OrientationOptions {
   double sides_weight = 1.0;  // evidence of the skeleton's own left/right (Kinect assumes people face it)
   double face_weight = 2.0;   // a frontal face found in the head region
   double no_face_weight = 0.3;  // a large, visible head region without a face (weak: detectors miss)
-  double motion_weight = 1.5;   // walking direction, scaled by speed up to 1 m/s
+  double motion_weight = 0.8;   // walking direction, scaled by speed up to 1 m/s (below sides: people sidestep)
   double min_speed_mps = 0.25;  // slower bodies give no motion evidence
   double continuity_weight = 3.0;  // cap of the evidence a track accumulates for its facing direction
-  double smoothing = 0.6;  // weight of the new observation in the circular filter (1 = none)
+  double smoothing = 0.8;  // alpha of the alpha-beta yaw filter: weight of the new observation (1 = none)
+  double turn_gain = 0.15;  // beta: how fast the filter's turning rate follows (0 = plain smoothing)
   double forget_s = 1.0;   // a track unseen this long starts afresh
   // Throws UsageError on weights < 0 or smoothing outside (0, 1].
   void check() const;
@@ -90,8 +92,9 @@ class OrientationEstimator {
 
   // Orientation of one body in `frame`. Call once per body and frame, frames in time order (the track
   // state keyed by ref.key uses frame.time_s). Thesis method: thesis_view() with the face flag from the
-  // face detector (unknown without colour); no state.
-  ViewEstimate estimate(const RgbdFrame& frame, const BodyRef& ref);
+  // face detector (unknown without colour); no state. `known_face` replaces the face detector (e.g. an
+  // evaluation's oracle from the truth yaw, or a face found elsewhere).
+  ViewEstimate estimate(const RgbdFrame& frame, const BodyRef& ref, std::optional<bool> known_face = std::nullopt);
 
   // The face detector's last answer for the body just estimated (for the partial scan and printing).
   const FaceResult& last_face() const { return last_face_; }
