@@ -61,7 +61,7 @@ ViewMethod parse_view_method(const std::string& name) {
 
 void OrientationOptions::check() const {
   if (!(turn_gain >= 0 && turn_gain <= 1)) throw UsageError("orientation options: turn_gain must be in 0..1");
-  for (double w : {sides_weight, face_weight, no_face_weight, motion_weight, continuity_weight, min_speed_mps, forget_s})
+  for (double w : {sides_weight, face_weight, no_face_weight, motion_weight, continuity_weight, min_speed_mps, walk_axis_speed_mps, forget_s})
     if (!(w >= 0)) throw UsageError("orientation options: weights, speeds and times must be >= 0");
   if (!(smoothing > 0 && smoothing <= 1)) throw UsageError("orientation options: smoothing must be in (0, 1]");
 }
@@ -215,14 +215,33 @@ ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRe
     return e;
   }
 
-  // Track state: forget stale tracks, keep 0.6 s of ground positions.
+  // Track state: forget stale tracks, keep 0.3 s of ground positions.
   Track& t = tracks_[ref.key];
   const double now = frame.time_s;
   if (now - t.last_time > options_.forget_s || now < t.last_time) t = Track{};
   const bool continuing = t.last_time > -1e8;
   if (ground) {
     t.path.emplace_back(now, *ground);
-    while (t.path.size() > 2 && now - t.path.front().first > 0.6) t.path.pop_front();
+    while (t.path.size() > 2 && now - t.path.front().first > 0.3) t.path.pop_front();
+  }
+
+  // Walking direction over the last 0.3 s (people walk forwards).
+  std::optional<double> motion_yaw;
+  double speed = 0;
+  if (t.path.size() >= 2) {
+    const double dt = t.path.back().first - t.path.front().first;
+    if (dt >= 0.2) {
+      const cv::Vec2d v = (t.path.back().second - t.path.front().second) / dt;
+      speed = cv::norm(v);
+      if (speed >= options_.min_speed_mps) motion_yaw = std::atan2(-v[0], -v[1]) * kDeg;
+    }
+  }
+  // Depth only: a walking body's direction is a better axis than the torso's visible surface, whose
+  // principal axis swings with the arms in side views.
+  if (!from_skeleton && motion_yaw && speed >= options_.walk_axis_speed_mps) {
+    yaw0 = *motion_yaw;
+    axis_quality = std::max(axis_quality, std::min(1.0, speed));
+    e.source = "depth+motion";
   }
 
   // The candidate on the track's side (continuity), then this frame's evidence for it (> 0) against the
@@ -236,17 +255,7 @@ ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRe
     if (*face) score += options_.face_weight * cos_deg(a);
     else if (last_face_.looked) score -= options_.no_face_weight * cos_deg(a);
   }
-  if (t.path.size() >= 2) {
-    const double dt = t.path.back().first - t.path.front().first;
-    if (dt >= 0.25) {
-      const cv::Vec2d v = (t.path.back().second - t.path.front().second) / dt;
-      const double speed = cv::norm(v);
-      if (speed >= options_.min_speed_mps) {
-        const double motion_yaw = std::atan2(-v[0], -v[1]) * kDeg;
-        score += options_.motion_weight * std::min(1.0, speed) * cos_deg(a - motion_yaw);
-      }
-    }
-  }
+  if (motion_yaw) score += options_.motion_weight * std::min(1.0, speed) * cos_deg(a - *motion_yaw);
   double belief = std::min(options_.continuity_weight, (continuing ? t.belief : 0.0) + score);
   double yaw = a;
   bool turned = false;

@@ -47,6 +47,7 @@ struct OrientationOptions {
   double no_face_weight = 0.3;  // a large, visible head region without a face (weak: detectors miss)
   double motion_weight = 0.8;   // walking direction, scaled by speed up to 1 m/s (below sides: people sidestep)
   double min_speed_mps = 0.25;  // slower bodies give no motion evidence
+  double walk_axis_speed_mps = 0.5;  // depth only: at least this fast, the walking direction is the yaw
   double continuity_weight = 3.0;  // cap of the evidence a track accumulates for its facing direction
   double smoothing = 0.8;  // alpha of the alpha-beta yaw filter: weight of the new observation (1 = none)
   double turn_gain = 0.15;  // beta: how fast the filter's turning rate follows (0 = plain smoothing)

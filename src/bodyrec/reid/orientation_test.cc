@@ -1,6 +1,7 @@
 #include "bodyrec/reid/orientation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -227,16 +228,22 @@ TEST(OrientationEstimator, RobustFollowsTheTruthOnASyntheticTurn) {
   OrientationOptions depth_opt = opt;
   depth_opt.use_skeleton = false;
   OrientationEstimator depth_est(synth.meta(), depth_opt);
-  int n = 0, right = 0;
+  int n = 0, right = 0, depth_n = 0, depth_right = 0;
   for (int i = 0; i < o.frames; ++i) {
     const RgbdFrame f = synth.render(i);
     for (const Body& b : f.bodies) {
       const ViewEstimate e = est.estimate(f, BodyRef::of(b, f.body_index));
-      depth_est.estimate(f, BodyRef::of(b, f.body_index));
+      const ViewEstimate d = depth_est.estimate(f, BodyRef::of(b, f.body_index));
+      EXPECT_EQ(d.source.substr(0, 5), "depth");
+      for (const auto& p : f.truth->people)
+        if (p.tracking_id == b.tracking_id && d.view) {
+          ++depth_n;
+          depth_right += *d.view == view_of_yaw(p.yaw_deg);
+        }
       ASSERT_TRUE(e.view) << e.reason;
       // Bodies entering at the image border have untracked shoulders and hips at first: depth only.
       if (!skeleton_yaw_deg(b)) {
-        EXPECT_EQ(e.source, "depth");
+        EXPECT_EQ(e.source.substr(0, 5), "depth");
         continue;
       }
       EXPECT_EQ(e.source, "skeleton");
@@ -251,7 +258,10 @@ TEST(OrientationEstimator, RobustFollowsTheTruthOnASyntheticTurn) {
     }
   }
   EXPECT_GT(n, 60);
-  EXPECT_GE(right, n * 90 / 100);
+  EXPECT_GE(right, n * 95 / 100);
+  // Depth only is much weaker (axis of the visible torso, walking direction, no faces): measured 44/95.
+  std::printf("skeleton %d/%d, depth only %d/%d\n", right, n, depth_right, depth_n);
+  EXPECT_GE(depth_right, depth_n * 40 / 100);
 }
 
 TEST(OrientationEstimator, ThesisMethodNeedsASkeleton) {
