@@ -41,9 +41,20 @@ class SegmentKeys {
   uint64_t next_ = 0;
 };
 
-// The truth person whose body-index pixels overlap this label most (at least half of its pixels).
-int truth_by_overlap(const RgbdFrame& f, const cv::Mat& labels, int label) {
-  if (!f.truth || f.body_index.empty()) return -1;
+// The truth person whose body-index pixels overlap this label most (at least half of its pixels); without
+// a body index, the one whose depth box overlaps the segment's box most (IoU >= 0.3).
+int truth_by_overlap(const RgbdFrame& f, const cv::Mat& labels, int label, const cv::Rect& box) {
+  if (!f.truth) return -1;
+  if (f.body_index.empty()) {
+    int best = -1;
+    double best_iou = 0.3;
+    for (size_t i = 0; i < f.truth->people.size(); ++i) {
+      const cv::Rect& t = f.truth->people[i].depth_box;
+      const double inter = (t & box).area(), uni = t.area() + box.area() - inter;
+      if (uni > 0 && inter / uni >= best_iou) best = static_cast<int>(i), best_iou = inter / uni;
+    }
+    return best;
+  }
   std::map<int, int> counts;
   int total = 0;
   for (int v = 0; v < labels.rows; ++v)
@@ -167,7 +178,7 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
         OrientedBody ob;
         ob.key = refs.back().key;
         ob.slot = p.label;
-        ob.truth = truth_by_overlap(f, seg.labels, p.label);
+        ob.truth = truth_by_overlap(f, seg.labels, p.label, p.box);
         out.bodies.push_back(ob);
       }
     }
