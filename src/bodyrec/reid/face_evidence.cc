@@ -12,7 +12,7 @@
 namespace bodyrec {
 
 std::string default_face_cascade() {
-  return "/usr/share/opencv4/lbpcascades/lbpcascade_frontalface_improved.xml";
+  return "/usr/share/opencv4/haarcascades/haarcascade_frontalface_alt2.xml";
 }
 
 FaceDetector::FaceDetector(const std::string& cascade_file) {

@@ -1,7 +1,8 @@
 // Front/back evidence from a face detector on a body's head region of the colour image (the thesis used
-// the Kinect Face API, which we do not have). OpenCV's LBP frontal-face cascade from Debian's
-// opencv-data (/usr/share/opencv4/lbpcascades/lbpcascade_frontalface_improved.xml), run only on the
-// crop around the head, upscaled so that the head is about 64 px tall.
+// the Kinect Face API, which we do not have). OpenCV's Haar frontal-face cascade from Debian's
+// opencv-data (/usr/share/opencv4/haarcascades/haarcascade_frontalface_alt2.xml), run only on the crop
+// around the head, upscaled so that the head is about 64 px tall. (On opencv-doc's messi5.jpg head crop,
+// alt2, default and the plain LBP cascade find the face; lbpcascade_frontalface_improved does not.)
 #pragma once
 
 #include <optional>

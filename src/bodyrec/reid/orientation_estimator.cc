@@ -60,6 +60,7 @@ ViewMethod parse_view_method(const std::string& name) {
 }
 
 void OrientationOptions::check() const {
+  if (face_every < 1) throw UsageError("orientation options: face_every must be >= 1");
   if (!(turn_gain >= 0 && turn_gain <= 1)) throw UsageError("orientation options: turn_gain must be in 0..1");
   for (double w : {sides_weight, face_weight, no_face_weight, motion_weight, continuity_weight, min_speed_mps, walk_axis_speed_mps, forget_s})
     if (!(w >= 0)) throw UsageError("orientation options: weights, speeds and times must be >= 0");
@@ -147,6 +148,7 @@ cv::Rect2d head_region(const RecordingMeta& meta, const RgbdFrame& frame, const 
 struct OrientationEstimator::Track {
   double yaw = 0;
   double rate = 0;    // deg/s, the alpha-beta filter's turning rate
+  int since_face = 0;  // frames since the face detector last ran on this track
   double belief = 0;  // accumulated evidence (>= 0) that `yaw`'s half (not yaw + 180) is the right one
   double last_time = -1e9;
   std::deque<std::pair<double, cv::Vec2d>> path;  // time, ground position (X, Z)
@@ -170,10 +172,11 @@ std::optional<bool> OrientationEstimator::face_flag(const RgbdFrame& frame, cons
 
 ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRef& ref, std::optional<bool> known_face) {
   std::optional<bool> face;
+  last_face_ = {};
   if (known_face) {
     last_face_ = {true, *known_face, {}};
     face = known_face;
-  } else {
+  } else if (options_.method == ViewMethod::kThesis) {
     face = face_flag(frame, ref);
   }
   if (options_.method == ViewMethod::kThesis) {
@@ -247,6 +250,12 @@ ViewEstimate OrientationEstimator::estimate(const RgbdFrame& frame, const BodyRe
   // The candidate on the track's side (continuity), then this frame's evidence for it (> 0) against the
   // opposite direction (< 0), accumulated over frames up to a cap so that consistent contrary evidence
   // turns it round within a few frames.
+  // The face detector costs most of the time: a track whose facing evidence is saturated asks it only
+  // every face_every-th frame.
+  if (!known_face && (!continuing || t.belief < options_.continuity_weight || ++t.since_face >= options_.face_every)) {
+    face = face_flag(frame, ref);
+    t.since_face = 0;
+  }
   const bool flipped = continuing && cos_deg(yaw0 - t.yaw) < 0;
   const double a = flipped ? wrap_deg(yaw0 + 180) : yaw0;
   double score = 0;

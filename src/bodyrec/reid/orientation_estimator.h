@@ -44,6 +44,7 @@ struct OrientationOptions {
   std::string face_cascade;   // empty: default_face_cascade()
   double sides_weight = 1.0;  // evidence of the skeleton's own left/right (Kinect assumes people face it)
   double face_weight = 2.0;   // a frontal face found in the head region
+  int face_every = 5;  // a track with saturated facing evidence runs the face detector every N-th frame only
   double no_face_weight = 0.3;  // a large, visible head region without a face (weak: detectors miss)
   double motion_weight = 0.8;   // walking direction, scaled by speed up to 1 m/s (below sides: people sidestep)
   double min_speed_mps = 0.25;  // slower bodies give no motion evidence

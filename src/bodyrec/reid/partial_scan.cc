@@ -49,7 +49,7 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
   // A depth pixel covers about fx_c / fx_d colour pixels (same distance); splat squares of that size.
   const int half = std::max(1, static_cast<int>(std::ceil(0.5 * kc.fx / meta_.depth.fx)));
   cv::Mat mask(kc.height, kc.width, CV_8U, cv::Scalar(0));
-  bool any = false;
+  int bu0 = kc.width, bu1 = -1, bv0 = kc.height, bv1 = -1;  // bounding box of the splats
   for (int v = 0; v < d.rows; ++v) {
     const uint8_t* lab = l.ptr<uint8_t>(v);
     const uint16_t* dep = d.ptr<uint16_t>(v);
@@ -66,12 +66,13 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
         uint8_t* m = mask.ptr<uint8_t>(y);
         for (int x = u0; x <= u1; ++x) m[x] = 255;
       }
-      any |= u0 <= u1 && v0 <= v1;
+      if (u0 > u1 || v0 > v1) continue;
+      bu0 = std::min(bu0, u0), bu1 = std::max(bu1, u1), bv0 = std::min(bv0, v0), bv1 = std::max(bv1, v1);
     }
   }
-  if (!any) return {};
+  if (bu1 < 0) return {};
   // Close the holes of depth dropouts, then keep the largest part (stray edge pixels go).
-  const cv::Rect box = cv::boundingRect(mask);
+  const cv::Rect box(bu0, bv0, bu1 - bu0 + 1, bv1 - bv0 + 1);
   const int k = 2 * half + 3;
   const cv::Rect grown = cv::Rect(box.x - k, box.y - k, box.width + 2 * k, box.height + 2 * k) & cv::Rect(0, 0, kc.width, kc.height);
   cv::Mat roi = mask(grown);

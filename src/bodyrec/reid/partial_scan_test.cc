@@ -1,9 +1,12 @@
 #include "bodyrec/reid/partial_scan.h"
 
+#include <cstdio>
+
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/rgbd/segment.h"
 #include "bodyrec/rgbd/synth.h"
 
 namespace bodyrec {
@@ -93,6 +96,33 @@ TEST_F(PartialScanOnOnePerson, MaskCoversTheTruePixelsAndQualityDropsWhenClipped
   EXPECT_GE(sum_iou / full, 0.96);
   EXPECT_GT(worst_full, 0.9);
   EXPECT_LT(best_clipped, best_full);
+}
+
+// Without a body index: the depth segmentation's label of the person gives the mask.
+TEST_F(PartialScanOnOnePerson, FromADepthSegmentWithoutBodyIndex) {
+  PartialScanExtractor scans(synth_->meta());
+  DepthSegmenter segmenter(synth_->meta().depth, synth_->meta().depth_unit_m);
+  for (int k = 0; k < o_.frames; k += 3) segmenter.learn_background(synth_->render(k).depth);
+  int scored = 0;
+  double sum_iou = 0;
+  for (int i = 0; i < o_.frames; i += 3) {
+    const RgbdFrame f = synth_->render(i);
+    if (f.bodies.empty() || f.truth->people[0].visible_fraction < 0.9) continue;
+    const Segmentation seg = segmenter.segment(f.depth);
+    if (seg.people.size() != 1) continue;
+    BodyRef ref;
+    ref.key = 7;
+    ref.labels = seg.labels;
+    ref.label = seg.people[0].label;
+    const auto s = scans.extract(f, ref, ViewEstimate{});
+    ASSERT_TRUE(s) << "frame " << i;
+    EXPECT_TRUE(s->head);
+    sum_iou += iou(scans.color_mask(f, ref), truth_mask(f));
+    ++scored;
+  }
+  ASSERT_GT(scored, 5);
+  std::printf("segment scans %d, mean IoU %.3f\n", scored, sum_iou / scored);
+  EXPECT_GE(sum_iou / scored, 0.90);
 }
 
 TEST(PartialScan, OccludedPersonScoresBelowItsFullView) {
