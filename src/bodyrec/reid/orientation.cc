@@ -63,9 +63,7 @@ std::optional<Quaternion> normalised(const Quaternion& q) {
   return Quaternion{q.w / n, q.x / n, q.y / n, q.z / n};
 }
 
-double thesis_spine_yaw_deg(const Quaternion& q) {
-  return std::asin(std::clamp(2 * (q.w * q.y - q.z * q.x), -1.0, 1.0)) * kDeg;
-}
+double thesis_spine_yaw_deg(const Quaternion& q) { return thesis_yaw_deg(q); }  // rgbd/skeleton.h
 
 double thesis_pitch_deg(const Quaternion& q) {
   return std::atan2(2 * (q.w * q.x + q.y * q.z), 1 - 2 * (q.x * q.x + q.y * q.y)) * kDeg;
