@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <random>
 #include <sstream>
 
@@ -97,6 +98,20 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+const fs::path& synth_recording(const std::vector<std::string>& synth_args) {
+  static TempDir dir;
+  static std::map<std::vector<std::string>, fs::path> made;
+  auto it = made.find(synth_args);
+  if (it != made.end()) return it->second;
+  const fs::path out = dir / ("rec" + std::to_string(made.size()));
+  std::vector<std::string> args = {"synth"};
+  args.insert(args.end(), synth_args.begin(), synth_args.end());
+  args.insert(args.end(), {"--out", out.string(), "-q"});
+  const RunResult r = run_bodyrec(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return made.emplace(synth_args, out).first->second;
 }
 
 }  // namespace bodyrec::testing

@@ -80,4 +80,8 @@ std::string input_error(F parse) {
 }
 void write_text(const std::filesystem::path& path, const std::string& text);
 
+// A synthetic recording made once per test program with `bodyrec synth SYNTH_ARGS --out DIR -q` in a
+// temporary directory that lives until the program ends; the same arguments give the same directory.
+const std::filesystem::path& synth_recording(const std::vector<std::string>& synth_args);
+
 }  // namespace bodyrec::testing

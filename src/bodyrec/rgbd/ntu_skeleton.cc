@@ -160,9 +160,18 @@ int import_ntu(const std::string& file, const std::string& out_dir, double rms_p
   meta.streams.bodies = true;
   fit_ntu_cameras(s, meta, rms_px);
   RecordingWriter writer(out_dir, meta);
+  for (auto& bodies : ntu_bodies(s, file)) {
+    RgbdFrame frame;
+    frame.bodies = std::move(bodies);
+    writer.write(frame);
+  }
+  return writer.frame_count();
+}
+
+std::vector<std::vector<Body>> ntu_bodies(const NtuSkeleton& s, const std::string& file) {
+  std::vector<std::vector<Body>> out(s.frames.size());
   std::map<uint64_t, int> slots;  // body id -> slot, in order of first appearance
   for (size_t f = 0; f < s.frames.size(); ++f) {
-    RgbdFrame frame;
     std::vector<int> used;
     for (const auto& nb : s.frames[f]) {
       auto it = slots.find(nb.id);
@@ -181,11 +190,10 @@ int import_ntu(const std::string& file, const std::string& out_dir, double rms_p
         bj.tracking_state = nj.tracking_state;
         if (nj.orientation.norm() > 1e-6) bj.orientation = nj.orientation;
       }
-      frame.bodies.push_back(body);
+      out[f].push_back(body);
     }
-    writer.write(frame);
   }
-  return writer.frame_count();
+  return out;
 }
 
 }  // namespace bodyrec

@@ -37,6 +37,11 @@ NtuSkeleton read_ntu_skeleton(const std::string& file);
 // receives the depth and colour fit residuals.
 void fit_ntu_cameras(const NtuSkeleton& s, RecordingMeta& meta, double rms_px[2]);
 
+// The skeleton's bodies per frame as recording bodies: slots in order of first appearance of a body id,
+// zero quaternions as "no orientation". InputError naming `file` and the frame when a frame has more
+// than 6 distinct ids.
+std::vector<std::vector<Body>> ntu_bodies(const NtuSkeleton& s, const std::string& file);
+
 // Writes the skeleton as a recording with the `bodies` stream only (no colour or depth exists). Bodies
 // take body slots in order of first appearance. Zero quaternions become "no orientation".
 // Returns the number of frames written.

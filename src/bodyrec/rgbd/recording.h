@@ -48,7 +48,7 @@ struct PersonTruth {
   int identity = 0;           // the same person keeps this across leaving and coming back
   uint64_t tracking_id = 0;   // equals Body::tracking_id of this person's body in the frame
   int body_index = -1;        // slot in the body index image, -1 when not in view
-  double yaw_deg = 0;         // facing direction, -180..180; 0 = facing the camera, +90 = facing +X
+  double yaw_deg = 0;         // facing direction, -180..180; 0 = facing the camera, +90 = facing -X
   double visible_fraction = 0;  // visible depth pixels / pixels of the unoccluded, unclipped body
   int visible_pixels = 0;       // body index pixels of this person
   cv::Rect depth_box;           // visible pixels' bounding box in the depth image (empty when none)

@@ -4,10 +4,11 @@
 // index, bodies (joints and hierarchical orientations) and ground truth.
 //
 // Conventions: camera space of recording.h (metres, +Y up, u grows with +X); the floor is the plane
-// Y = -camera_height. A person's yaw is 0 when facing the camera and +90 when facing +X; forward is
-// R_y(yaw) (0, 0, -1). SpineBase holds R_y(yaw); every other joint with an orientation holds the body
-// rotation turned (minimally) so that its Y axis runs along the bone from its parent, as Kinect does;
-// end joints (head, feet, hand tips, thumbs) have none, as on Kinect.
+// Y = -camera_height. A person's yaw is 0 when facing the camera and +90 when facing -X (towards the
+// image's left); forward is R_y(yaw) (0, 0, -1) = (-sin yaw, 0, -cos yaw). SpineBase holds
+// R_y(yaw + 180 deg): Kinect's joint frames have Z forward, so a body facing the sensor holds a half turn.
+// Every other joint with an orientation holds that rotation turned (minimally) so that its Y axis runs
+// along the bone from its parent, as Kinect does; end joints (head, feet, hand tips, thumbs) have none.
 #pragma once
 
 #include <cstdint>

@@ -196,7 +196,10 @@ PersonModel build_person(const Look& l, const Pose& pose) {
 
   // Orientations: the body rotation turned so its Y axis runs along the bone from the parent (Kinect
   // style). Rest directions avoid the degenerate half-turn: spine up, shoulders out, limbs down.
-  m.orientations[idx(Joint::kSpineBase)] = Quaternion::from_matrix(r);
+  // Kinect's joint frames have Z along the body's forward direction (checked on NTU RGB+D: a body facing
+  // the sensor holds about R_y(180 deg)); body coordinates here have z back, hence the half turn.
+  const cv::Matx33d to_kinect = rot_y(M_PI);
+  m.orientations[idx(Joint::kSpineBase)] = Quaternion::from_matrix(r * to_kinect);
   for (int j = 1; j < kJointCount; ++j) {
     const Joint jt = static_cast<Joint>(j);
     if (jt == Joint::kHead || jt == Joint::kFootLeft || jt == Joint::kFootRight || jt == Joint::kHandTipLeft ||
@@ -211,7 +214,7 @@ PersonModel build_person(const Look& l, const Pose& pose) {
     else if (jt == Joint::kHipRight) rest = rot_z(-M_PI / 2);
     else if (bone[1] < 0) rest = rot_x(M_PI);
     const cv::Vec3d rest_dir(rest(0, 1), rest(1, 1), rest(2, 1));
-    m.orientations[static_cast<size_t>(j)] = Quaternion::from_matrix(r * align(rest_dir, bone) * rest);
+    m.orientations[static_cast<size_t>(j)] = Quaternion::from_matrix(r * align(rest_dir, bone) * rest * to_kinect);
   }
 
   // Dress the skeleton. Body coordinates -> camera via `to`.

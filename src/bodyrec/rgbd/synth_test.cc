@@ -64,9 +64,10 @@ TEST(Synth, TruthAgreesWithBodyIndexDepthAndSkeleton) {
     ASSERT_EQ(f.bodies.size(), 1u);
     const Body& b = f.bodies[0];
     EXPECT_EQ(b.tracking_id, t.tracking_id);
-    // SpineBase orientation carries the yaw (thesis formula valid for |yaw| < 90).
+    // SpineBase orientation carries the yaw in Kinect's convention (Z forward): the thesis formula gives
+    // -yaw on the front half (|yaw| < 90), as on real Kinect data (reid/orientation.h).
     if (std::abs(t.yaw_deg) < 80) {
-      EXPECT_NEAR(thesis_yaw_deg(*b.joints[0].orientation), t.yaw_deg, 1e-6);
+      EXPECT_NEAR(thesis_yaw_deg(*b.joints[0].orientation), -t.yaw_deg, 1e-6);
     }
     // Depth at the SpineMid pixel is the body surface a few cm in front of or behind the joint.
     const auto px = project(s.meta().depth, b.joints[idx(Joint::kSpineMid)].position);
