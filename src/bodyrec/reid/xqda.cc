@@ -310,3 +310,5 @@ XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, int sli
   e.id = fingerprint(all);
   return e;
 }
+
+}  // namespace bodyrec
