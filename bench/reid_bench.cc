@@ -38,6 +38,7 @@ void BM_XqdaEmbed(benchmark::State& state) {
   bodyrec::XqdaModel model;
   model.projection = cv::Mat(bodyrec::lomo_length(), static_cast<int>(state.range(0)), CV_32F);
   cv::randn(model.projection, 0, 0.01);
+  model.prepare();
   const std::vector<float> f = bodyrec::lomo_features(body(2, {48, 128}));
   for (auto _ : state) benchmark::DoNotOptimize(model.embed(f));
 }

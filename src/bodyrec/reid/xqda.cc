@@ -71,11 +71,23 @@ double squared_distance(const std::vector<float>& a, const std::vector<float>& b
 }
 
 std::vector<float> XqdaModel::embed(const std::vector<float>& feature) const {
-  CV_Assert(static_cast<int>(feature.size()) == projection.rows);
-  cv::Mat out;
-  const cv::Mat x(1, projection.rows, CV_32F, const_cast<float*>(feature.data()));
-  cv::gemm(x, projection, 1.0, cv::noArray(), 0.0, out);
-  return std::vector<float>(out.begin<float>(), out.end<float>());
+  CV_Assert(static_cast<int>(feature.size()) == projection.rows && rows.rows == projection.cols);
+  // One dot product per output dimension over contiguous memory; 8 partial sums let the compiler
+  // keep several multiply-adds in flight (a float reduction is not vectorised without -ffast-math).
+  const int n = rows.cols;
+  const float* x = feature.data();
+  std::vector<float> out(static_cast<size_t>(rows.rows));
+  for (int k = 0; k < rows.rows; ++k) {
+    const float* w = rows.ptr<float>(k);
+    float acc[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    int i = 0;
+    for (; i + 8 <= n; i += 8)
+      for (int j = 0; j < 8; ++j) acc[j] += w[i + j] * x[i + j];
+    float sum = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+    for (; i < n; ++i) sum += w[i] * x[i];
+    out[static_cast<size_t>(k)] = sum;
+  }
+  return out;
 }
 
 XqdaModel train_xqda(const std::vector<XqdaSample>& samples, const XqdaOptions& options) {
@@ -168,6 +180,7 @@ XqdaModel train_xqda(const std::vector<XqdaSample>& samples, const XqdaOptions& 
   coef.convertTo(coef32, CV_32F);
   XqdaModel model;
   cv::gemm(a, coef32, 1.0, cv::noArray(), 0.0, model.projection, cv::GEMM_1_T);
+  model.prepare();
 
   // 5. Threshold at the lowest balanced error on the training pairs.
   cv::Mat emb = y * b;
@@ -245,6 +258,7 @@ XqdaEnsemble XqdaEnsemble::load(const std::string& path) {
     node["threshold"] >> m.threshold;
     if (m.projection.empty() || m.projection.type() != CV_32F)
       throw InputError(path + ": field 'parts/projection' is missing or not a float matrix");
+    m.prepare();
     e.parts.push_back(m);
   }
   return e;

@@ -28,10 +28,12 @@ struct XqdaSample {
 struct XqdaModel {
   cv::Mat projection;      // CV_32F, feature length x dims; embedding = projection^T x
   double threshold = 0;    // squared distance below which two embeddings are called the same person
+  cv::Mat rows;            // projection^T, continuous (what embed() reads); set by prepare()
 
   bool empty() const { return projection.empty(); }
   int input_length() const { return projection.rows; }
-  // REQUIRES feature.size() == input_length().
+  void prepare() { rows = projection.t(); }  // after setting projection by hand
+  // REQUIRES prepare() called since projection was set; feature.size() == input_length().
   std::vector<float> embed(const std::vector<float>& feature) const;
 };
 
