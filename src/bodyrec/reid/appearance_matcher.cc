@@ -11,7 +11,7 @@ namespace {
 
 // Squared Euclidean distance between unit-norm LOMO features below which the unlearned fallback calls
 // two images the same person: the balanced-error threshold over all VIPeR cross-camera pairs.
-constexpr double kLomoThreshold = 1.0;
+constexpr double kLomoThreshold = 3.81;
 
 class LomoMatcher : public AppearanceMatcher {
  public:

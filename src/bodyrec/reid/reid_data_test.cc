@@ -9,9 +9,9 @@
 namespace bodyrec {
 namespace {
 
-// Measured rank-1 on the first splits of seed 0 minus a small margin (docs/benchmarks.md has the figures).
-constexpr double kDefaultRank1Floor = 0.35;
-constexpr double kLomoRank1Floor = 0.10;
+// Measured rank-1 on split 0 of seed 0 minus a small margin (docs/benchmarks.md has the 10-split figures).
+constexpr double kDefaultRank1Floor = 0.34;
+constexpr double kLomoRank1Floor = 0.11;
 
 ReidDataset viper(const std::filesystem::path& root) {
   return scan_reid_dataset(root.string(), "^images/(\\d{4})", "^images/\\d{4}(\\d{4})");
@@ -24,12 +24,15 @@ TEST(ViperData, DefaultMatcherReachesItsRank1) {
   ASSERT_EQ(data.in_both.size(), 632u);
   ReidEvalOptions o;
   o.train_ids = 316;
-  o.splits = 2;
+  o.splits = 1;
   const ReidEvalResult r = evaluate_reid(data, [] { return make_matcher("default"); }, o);
   EXPECT_EQ(r.probes, 316);
   EXPECT_EQ(r.gallery, 316);
   EXPECT_GE(r.rank1, kDefaultRank1Floor) << r.matcher;
   EXPECT_GE(r.rank20, 0.85);
+  // The threshold (chosen on held-out training people) keeps both error kinds moderate on new people.
+  EXPECT_GE(r.same_accepted, 0.6);
+  EXPECT_GE(r.different_rejected, 0.6);
 }
 
 TEST(ViperData, UnlearnedFallbackAndKazeAreMeasured) {
@@ -40,6 +43,8 @@ TEST(ViperData, UnlearnedFallbackAndKazeAreMeasured) {
   o.splits = 1;
   const ReidEvalResult lomo = evaluate_reid(data, [] { return make_matcher("lomo"); }, o);
   EXPECT_GE(lomo.rank1, kLomoRank1Floor);
+  EXPECT_GE(lomo.same_accepted, 0.5);
+  EXPECT_GE(lomo.different_rejected, 0.5);
   const ReidEvalResult kaze = evaluate_reid(data, [] { return make_matcher("kaze"); }, o);
   EXPECT_EQ(kaze.probes, 316);
   EXPECT_LT(kaze.rank1, 0.03);  // near chance (1/316 = 0.3 %): KAZE does not carry across cameras
