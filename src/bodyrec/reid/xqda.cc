@@ -314,10 +314,13 @@ XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, int sli
     const bool hold = it != both.end() && *it == s.identity && (it - both.begin()) % 2 == 1;
     (hold ? held_out : fit).push_back(s);
   }
+  e.threshold = fused_threshold(e, samples);
   if (both.size() >= 6) {
-    e.threshold = fused_threshold(train_parts(fit, slices, options), held_out);
-  } else {
-    e.threshold = fused_threshold(e, samples);  // too few people to hold any out
+    // How much farther unseen pairs are than training pairs, measured with a half model, applied to the
+    // full model's training-pair threshold (the half model's own scale does not carry over).
+    const XqdaEnsemble half = train_parts(fit, slices, options);
+    const double seen = fused_threshold(half, fit), unseen = fused_threshold(half, held_out);
+    if (seen > 0 && unseen > 0) e.threshold *= unseen / seen;
   }
   cv::Mat all;
   for (const auto& p : e.parts) all.push_back(p.projection.reshape(1, 1).t());

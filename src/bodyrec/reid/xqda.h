@@ -56,9 +56,10 @@ struct XqdaEnsemble {
 };
 
 // Trains one model per slice (`slices` equal slices of the features). The fused threshold is the
-// balanced-error one on held-out people (a model trained on every other identity present in both
-// cameras, scored on the rest), since training pairs look closer than unseen ones; with fewer than 6
-// such identities it falls back to the training pairs.
+// balanced-error one on the training pairs, scaled by how much farther unseen people are: a model
+// trained on every other identity present in both cameras gives balanced thresholds on its own
+// training pairs and on the held-out rest, and their ratio is applied (not with fewer than 6 such
+// identities).
 XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, int slices, const XqdaOptions& options = {});
 
 // REQUIRES samples from both cameras, at least two identities present in both, all features the same
