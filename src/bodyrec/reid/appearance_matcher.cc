@@ -1,0 +1,100 @@
+#include "bodyrec/reid/appearance_matcher.h"
+
+#include <sstream>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/reid/kaze_matcher.h"
+#include "bodyrec/reid/lomo_features.h"
+
+namespace bodyrec {
+namespace {
+
+// Squared Euclidean distance between unit-norm LOMO features below which the unlearned fallback calls
+// two images the same person: the balanced-error threshold over all VIPeR cross-camera pairs.
+constexpr double kLomoThreshold = 3.81;
+
+class LomoMatcher : public AppearanceMatcher {
+ public:
+  LomoMatcher(XqdaEnsemble model, bool learns) : model_(std::move(model)), learns_(learns) {
+    if (!model_.empty() && model_.input_length() != 2 * lomo_length())
+      throw InputError("re-identification model expects features of length " +
+                       std::to_string(model_.input_length()) + ", LOMO x 2 gives " + std::to_string(2 * lomo_length()));
+  }
+  std::string name() const override { return model_.empty() ? "lomo" : "lomo-xqda"; }
+  std::string version() const override { return model_.empty() ? "lomo2" : "lomo2-xqda-" + model_.id; }
+  std::string summary() const override {
+    std::ostringstream s;
+    if (model_.empty())
+      s << "LOMO features, unlearned: similarity = -squared Euclidean distance, same person above -" << kLomoThreshold;
+    else
+      s << "LOMO features + XQDA metric (plain and Retinex colour, fused; " << model_.embed_length() << " dims, model "
+        << model_.id << "): similarity = -squared distance, same person above " << threshold();
+    return s.str();
+  }
+  // LOMO on the colours as seen, then LOMO on Retinex colours: one XQDA model per half, fused.
+  std::vector<float> features(const PersonImage& image) const override {
+    LomoOptions plain;
+    plain.retinex = false;
+    std::vector<float> f = lomo_features(image, plain);
+    const std::vector<float> retinex = lomo_features(image);
+    f.insert(f.end(), retinex.begin(), retinex.end());
+    return f;
+  }
+  void train(const std::vector<TrainingSample>& samples) override {
+    if (learns_) model_ = train_xqda_ensemble(samples, 2);
+  }
+  std::vector<float> descriptor(const std::vector<float>& f) const override {
+    return model_.empty() ? f : model_.embed(f);
+  }
+  double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
+    return -squared_distance(probe, gallery);
+  }
+  double threshold() const override { return model_.empty() ? -kLomoThreshold : -model_.threshold; }
+  void save_model(const std::string& path) const override {
+    if (model_.empty()) AppearanceMatcher::save_model(path);
+    model_.save(path);
+  }
+
+ private:
+  XqdaEnsemble model_;
+  bool learns_;  // false: the unlearned fallback stays unlearned
+};
+
+class KazeMatcher : public AppearanceMatcher {
+ public:
+  std::string name() const override { return "kaze"; }
+  std::string version() const override { return "kaze1"; }
+  std::string summary() const override {
+    return "KAZE + FLANN k-d tree, ratio 0.80, similarity = 2 x matches kept (thesis Listing 6.11), same person above 10";
+  }
+  std::vector<float> features(const PersonImage& image) const override {
+    return pack_descriptors(kaze_descriptors(image));
+  }
+  double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
+    return kaze_score(unpack_descriptors(probe), unpack_descriptors(gallery));
+  }
+  double threshold() const override { return kKazeThreshold; }
+};
+
+}  // namespace
+
+void AppearanceMatcher::save_model(const std::string& path) const {
+  throw UsageError("matcher " + name() + " has no learned model to write to " + path);
+}
+
+std::vector<std::string> matcher_names() { return {"default", "lomo-xqda", "lomo", "kaze"}; }
+
+std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path) {
+  if (name == "kaze" || name == "lomo") {
+    if (!model_path.empty()) throw UsageError("matcher " + name + " takes no model");
+    if (name == "kaze") return std::make_unique<KazeMatcher>();
+    return std::make_unique<LomoMatcher>(XqdaEnsemble{}, false);
+  }
+  if (name == "default" || name == "lomo-xqda")
+    return std::make_unique<LomoMatcher>(model_path.empty() ? XqdaEnsemble{} : XqdaEnsemble::load(model_path), true);
+  std::string known;
+  for (const auto& n : matcher_names()) known += (known.empty() ? "" : ", ") + n;
+  throw UsageError("unknown matcher '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace bodyrec

@@ -1,0 +1,57 @@
+// One interface for comparing person images, so the online pipeline, the gallery and `eval reid` do
+// not depend on which descriptor is used. A descriptor is a std::vector<float> (stored as a blob) tagged
+// with name() and version(): descriptors are comparable only when both strings are equal.
+//
+// Convention: similarity(probe, gallery) is HIGHER for more alike images, and
+// similarity > threshold() means "same person" (for kaze: the thesis's score > 10).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bodyrec/reid/person_image.h"
+#include "bodyrec/reid/xqda.h"
+
+namespace bodyrec {
+
+using TrainingSample = XqdaSample;  // features, identity, camera (0 probe side / 1 gallery side)
+
+class AppearanceMatcher {
+ public:
+  virtual ~AppearanceMatcher() = default;
+  virtual std::string name() const = 0;     // "lomo-xqda", "lomo", "kaze"
+  virtual std::string version() const = 0;  // descriptor format (and model fingerprint when learned)
+  virtual std::string summary() const = 0;  // one line for reports: method, similarity, threshold
+
+  // Model-independent features of one image (what train() learns from).
+  virtual std::vector<float> features(const PersonImage& image) const = 0;
+  // Learns from labelled features (two cameras). Matchers that learn nothing ignore it.
+  virtual void train(const std::vector<TrainingSample>& samples) { (void)samples; }
+  // The descriptor to store: features with the learned model, if any, applied.
+  virtual std::vector<float> descriptor(const std::vector<float>& features) const { return features; }
+  std::vector<float> describe(const PersonImage& image) const { return descriptor(features(image)); }
+
+  // REQUIRES both from this matcher (same name and version).
+  virtual double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const = 0;
+  virtual double threshold() const = 0;
+
+  // Writes the learned model (cv::FileStorage YAML) for make_matcher(name, path); throws UsageError
+  // when this matcher has nothing learned to save.
+  virtual void save_model(const std::string& path) const;
+};
+
+// The matchers by name:
+//  "default" / "lomo-xqda": LOMO features twice (colours as seen, and after Retinex); with a model
+//      (model_path, or train()) one XQDA metric per half, fused (xqda.h XqdaEnsemble),
+//      similarity = -squared distance of the embeddings, threshold from the training pairs; without a
+//      model it is the unlearned fallback "lomo".
+//  "lomo": the same features, similarity = -squared Euclidean distance, threshold measured on VIPeR.
+//  "kaze": the thesis's KAZE score (kaze_matcher.h), threshold 10.
+// Throws UsageError for an unknown name, InputError for an unreadable model.
+std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");
+
+// The names make_matcher accepts, for --help and errors.
+std::vector<std::string> matcher_names();
+
+}  // namespace bodyrec

@@ -1,0 +1,32 @@
+// LOMO, Local Maximal Occurrence features (Liao, Hu, Zhu, Li, CVPR 2015): colour and texture histograms
+// on overlapping patches, max-pooled along each horizontal row so that a viewpoint change that moves a
+// pattern sideways does not change the feature.
+#pragma once
+
+#include <vector>
+
+#include "bodyrec/reid/person_image.h"
+
+namespace bodyrec {
+
+struct LomoOptions {
+  int width = 48, height = 128;  // every image is resampled to this size first
+  int patch = 10, stride = 5;    // square patches; one row of patches every `stride` pixels
+  int scales = 3;                // pyramid levels, each a 2x2 average pooling of the previous
+  int hsv_bins = 8;              // joint HSV histogram: hsv_bins^3 bins
+  float siltp_tau = 0.3f;        // SILTP scale-invariance tolerance
+  bool retinex = true;           // multi-scale Retinex before the colour histograms
+  bool lab = false;              // joint histograms of CIE Lab instead of HSV
+  void check() const;            // throws UsageError naming the bad field
+};
+
+// Length of the feature for these options (26960 for the defaults: 40 patch rows x (512 + 2 x 81)).
+int lomo_length(const LomoOptions& options = {});
+
+// REQUIRES image.bgr CV_8UC3 non-empty; image.mask empty or CV_8U of the same size.
+// ENSURES lomo_length(options) floats: [HSV histograms | SILTP(R=3) | SILTP(R=5)] per patch row and
+// scale, each count log(1 + x), the colour part and the texture part each of unit L2 norm. Masked-out
+// pixels are not counted (a fully masked image gives zeros).
+std::vector<float> lomo_features(const PersonImage& image, const LomoOptions& options = {});
+
+}  // namespace bodyrec

@@ -1,0 +1,104 @@
+#include "bodyrec/reid/lomo_features.h"
+
+#include <cmath>
+#include <numeric>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/reid/retinex.h"
+
+namespace bodyrec {
+namespace {
+
+double norm_of(const std::vector<float>& v, size_t begin, size_t end) {
+  double s = 0;
+  for (size_t i = begin; i < end; ++i) s += double(v[i]) * v[i];
+  return std::sqrt(s);
+}
+
+cv::Mat person(cv::Scalar top, cv::Scalar bottom, cv::Scalar background) {
+  cv::Mat image(128, 48, CV_8UC3, background);
+  cv::rectangle(image, cv::Rect(12, 10, 24, 50), top, cv::FILLED);
+  cv::rectangle(image, cv::Rect(14, 60, 20, 60), bottom, cv::FILLED);
+  cv::RNG rng(7);
+  cv::Mat noise(image.size(), CV_8UC3);
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 12);
+  return image + noise;
+}
+
+TEST(Lomo, LengthAndPerPartUnitNorms) {
+  EXPECT_EQ(lomo_length(), 40 * (512 + 162));  // 24 + 11 + 5 patch rows
+  const auto f = lomo_features({person({0, 0, 200}, {200, 0, 0}, {90, 90, 90}), {}});
+  ASSERT_EQ(f.size(), size_t(lomo_length()));
+  const size_t colour = 40 * 512;
+  EXPECT_NEAR(norm_of(f, 0, colour), 1.0, 1e-5);
+  EXPECT_NEAR(norm_of(f, colour, f.size()), 1.0, 1e-5);
+  for (float x : f) EXPECT_GE(x, 0.0f);
+}
+
+TEST(Lomo, DifferentClothesAreFartherThanTheSameClothesOnAnotherBackground) {
+  const auto a = lomo_features({person({0, 0, 200}, {200, 0, 0}, {90, 90, 90}), {}});
+  const auto same = lomo_features({person({0, 0, 200}, {200, 0, 0}, {60, 100, 80}), {}});
+  const auto other = lomo_features({person({0, 200, 0}, {0, 200, 200}, {90, 90, 90}), {}});
+  auto dist = [](const std::vector<float>& x, const std::vector<float>& y) {
+    double s = 0;
+    for (size_t i = 0; i < x.size(); ++i) s += (x[i] - y[i]) * (x[i] - y[i]);
+    return s;
+  };
+  EXPECT_LT(dist(a, same), dist(a, other));
+}
+
+TEST(Lomo, MaskRemovesTheBackground) {
+  const cv::Mat a = person({0, 0, 200}, {200, 0, 0}, {90, 90, 90});
+  const cv::Mat b = person({0, 0, 200}, {200, 0, 0}, {0, 220, 220});
+  cv::Mat mask = cv::Mat::zeros(a.size(), CV_8U);
+  mask(cv::Rect(12, 10, 24, 50)).setTo(255);
+  mask(cv::Rect(14, 60, 20, 60)).setTo(255);
+  LomoOptions plain;
+  plain.retinex = false;  // Retinex blurs background into the body: compare raw colours
+  const auto fa = lomo_features({a, mask}, plain), fb = lomo_features({b, mask}, plain);
+  const auto ua = lomo_features({a, {}}, plain), ub = lomo_features({b, {}}, plain);
+  double masked = 0, unmasked = 0;
+  for (size_t i = 0; i < 24 * 512; ++i) {  // colour part, full scale (pooled scales mix edge pixels)
+    masked += std::abs(fa[i] - fb[i]);
+    unmasked += std::abs(ua[i] - ub[i]);
+  }
+  // Background pixels are not counted: the full-scale counts are equal, and only the normalisation
+  // (shared with the pooled scales, where edge pixels mix body and background) differs a little.
+  EXPECT_GT(unmasked, 0.5);
+  EXPECT_LT(masked, 0.05 * unmasked);
+  // A fully masked image has no body pixels: all zeros.
+  const auto none = lomo_features({a, cv::Mat::zeros(a.size(), CV_8U)});
+  EXPECT_EQ(std::accumulate(none.begin(), none.end(), 0.0), 0.0);
+}
+
+TEST(Lomo, AnyCropSizeIsResampledAndOptionsAreChecked) {
+  const cv::Mat crop = person({0, 0, 200}, {200, 0, 0}, {90, 90, 90});
+  cv::Mat big;
+  cv::resize(crop, big, {100, 250});
+  EXPECT_EQ(lomo_features({big, {}}).size(), size_t(lomo_length()));
+  LomoOptions bad;
+  bad.hsv_bins = 1;
+  EXPECT_THROW(bad.check(), UsageError);
+}
+
+TEST(Retinex, BrightensADimImageAndKeepsItsHues) {
+  cv::Mat dim(64, 32, CV_8UC3);
+  cv::randu(dim, cv::Scalar(10, 20, 30), cv::Scalar(20, 40, 60));  // dim, orange-ish (B < G < R)
+  const cv::Mat out = multiscale_retinex(dim);
+  ASSERT_EQ(out.size(), dim.size());
+  EXPECT_GT(cv::mean(out)[2], 3 * cv::mean(dim)[2]);
+  cv::Mat hsv_in, hsv_out;
+  cv::cvtColor(dim, hsv_in, cv::COLOR_BGR2HSV);
+  cv::cvtColor(out, hsv_out, cv::COLOR_BGR2HSV);
+  // Hue is kept up to rounding (dark input pixels quantise coarsely): compare the means.
+  std::vector<cv::Mat> a, b;
+  cv::split(hsv_in, a);
+  cv::split(hsv_out, b);
+  EXPECT_NEAR(cv::mean(a[0])[0], cv::mean(b[0])[0], 2.0);
+}
+
+}  // namespace
+}  // namespace bodyrec

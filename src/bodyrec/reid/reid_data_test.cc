@@ -1,0 +1,55 @@
+// The matchers on VIPeR (632 people, two cameras, 48x128): the default must keep its measured rank-1,
+// and the thesis's KAZE score is measured (near chance across cameras, as the digest reports).
+// Fewer splits than the 10 of the protocol keep the test short; docs/benchmarks.md has the full figures.
+#include <gtest/gtest.h>
+
+#include "bodyrec/reid/reid_eval.h"
+#include "test_support.h"
+
+namespace bodyrec {
+namespace {
+
+// Measured rank-1 on split 0 of seed 0 minus a small margin (docs/benchmarks.md has the 10-split figures).
+constexpr double kDefaultRank1Floor = 0.34;
+constexpr double kLomoRank1Floor = 0.11;
+
+ReidDataset viper(const std::filesystem::path& root) {
+  return scan_reid_dataset(root.string(), "^images/(\\d{4})", "^images/\\d{4}(\\d{4})");
+}
+
+TEST(ViperData, DefaultMatcherReachesItsRank1) {
+  BODYREC_REQUIRE_DATA(root, "viper");
+  const ReidDataset data = viper(root);
+  ASSERT_EQ(data.images.size(), 1264u);
+  ASSERT_EQ(data.in_both.size(), 632u);
+  ReidEvalOptions o;
+  o.train_ids = 316;
+  o.splits = 1;
+  const ReidEvalResult r = evaluate_reid(data, [] { return make_matcher("default"); }, o);
+  EXPECT_EQ(r.probes, 316);
+  EXPECT_EQ(r.gallery, 316);
+  EXPECT_GE(r.rank1, kDefaultRank1Floor) << r.matcher;
+  EXPECT_GE(r.rank20, 0.85);
+  // Known weakness: the learned threshold is far too strict on new people (split 0 accepts 8 % of the
+  // same-person pairs); ranking does not use it. Checked here so a fix shows up.
+  EXPECT_GE(r.different_rejected, 0.9);
+}
+
+TEST(ViperData, UnlearnedFallbackAndKazeAreMeasured) {
+  BODYREC_REQUIRE_DATA(root, "viper");
+  const ReidDataset data = viper(root);
+  ReidEvalOptions o;
+  o.train_ids = 316;
+  o.splits = 1;
+  const ReidEvalResult lomo = evaluate_reid(data, [] { return make_matcher("lomo"); }, o);
+  EXPECT_GE(lomo.rank1, kLomoRank1Floor);
+  EXPECT_GE(lomo.same_accepted, 0.5);
+  EXPECT_GE(lomo.different_rejected, 0.5);
+  const ReidEvalResult kaze = evaluate_reid(data, [] { return make_matcher("kaze"); }, o);
+  EXPECT_EQ(kaze.probes, 316);
+  EXPECT_LT(kaze.rank1, 0.03);  // near chance (1/316 = 0.3 %): KAZE does not carry across cameras
+  EXPECT_GT(kaze.rank20, 0.0);
+}
+
+}  // namespace
+}  // namespace bodyrec

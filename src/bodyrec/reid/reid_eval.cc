@@ -1,0 +1,95 @@
+#include "bodyrec/reid/reid_eval.h"
+
+#include <chrono>
+#include <filesystem>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/reid/cmc.h"
+
+namespace bodyrec {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+}  // namespace
+
+std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const AppearanceMatcher& matcher,
+                                                 double* ms) {
+  std::vector<std::vector<float>> features(data.images.size());
+  double total_ms = 0;
+  for (size_t i = 0; i < data.images.size(); ++i) {
+    const std::string path = (std::filesystem::path(data.root) / data.images[i].path).string();
+    PersonImage image;
+    image.bgr = cv::imread(path, cv::IMREAD_COLOR);
+    if (image.bgr.empty()) throw InputError(path + ": cannot read the image");
+    const auto t = Clock::now();
+    features[i] = matcher.features(image);
+    total_ms += ms_since(t);
+  }
+  if (ms) *ms = data.images.empty() ? 0.0 : total_ms / static_cast<double>(data.images.size());
+  return features;
+}
+
+void ReidEvalOptions::check() const {
+  if (splits < 1) throw UsageError("--splits must be >= 1");
+  if (train_ids < -1) throw UsageError("--train-ids must be >= 0");
+}
+
+ReidEvalResult evaluate_reid(const ReidDataset& data, const MatcherFactory& make, const ReidEvalOptions& options) {
+  options.check();
+  ReidEvalResult result;
+  result.train_ids = options.train_ids >= 0 ? options.train_ids : static_cast<int>(data.in_both.size()) / 2;
+  // Features do not depend on the split: compute them once per image.
+  double feature_ms_per_image = 0;
+  const std::vector<std::vector<float>> features = dataset_features(data, *make(), &feature_ms_per_image);
+  double match_ms_per_image = 0;
+  for (int s = 0; s < options.splits; ++s) {
+    const ReidSplit split = make_reid_split(data, result.train_ids, options.seed, s);
+    std::unique_ptr<AppearanceMatcher> matcher = make();
+    if (options.learn && !split.train.empty()) {
+      std::vector<TrainingSample> samples;
+      for (int i : split.train)
+        samples.push_back({&features[static_cast<size_t>(i)], data.images[i].identity, data.images[i].camera});
+      matcher->train(samples);
+    }
+    const auto t = Clock::now();
+    std::vector<std::vector<float>> probe_d, gallery_d;
+    std::vector<int> probe_ids, gallery_ids;
+    for (int i : split.probes) probe_d.push_back(matcher->descriptor(features[i])), probe_ids.push_back(data.images[i].identity);
+    for (int i : split.gallery)
+      gallery_d.push_back(matcher->descriptor(features[i])), gallery_ids.push_back(data.images[i].identity);
+    cv::Mat similarity(static_cast<int>(probe_d.size()), static_cast<int>(gallery_d.size()), CV_64F);
+    for (int p = 0; p < similarity.rows; ++p)
+      for (int g = 0; g < similarity.cols; ++g) similarity.at<double>(p, g) = matcher->similarity(probe_d[p], gallery_d[g]);
+    match_ms_per_image += ms_since(t) / static_cast<double>(probe_d.size() + gallery_d.size());
+    const RankingScores scores = ranking_scores(similarity, probe_ids, gallery_ids, 20);
+    double same = 0, same_ok = 0, diff = 0, diff_ok = 0;
+    for (int p = 0; p < similarity.rows; ++p)
+      for (int g = 0; g < similarity.cols; ++g) {
+        const bool accepted = similarity.at<double>(p, g) > matcher->threshold();
+        if (probe_ids[p] == gallery_ids[g]) same += 1, same_ok += accepted;
+        else diff += 1, diff_ok += !accepted;
+      }
+    result.same_accepted += same > 0 ? same_ok / same : 0.0;
+    result.different_rejected += diff > 0 ? diff_ok / diff : 0.0;
+    result.rank1 += scores.cmc[0];
+    result.rank5 += scores.cmc[4];
+    result.rank10 += scores.cmc[9];
+    result.rank20 += scores.cmc[19];
+    result.map += scores.map;
+    result.rank1_per_split.push_back(scores.cmc[0]);
+    result.probes = static_cast<int>(split.probes.size());
+    result.gallery = static_cast<int>(split.gallery.size());
+    result.matcher = matcher->summary();
+  }
+  const double n = options.splits;
+  result.rank1 /= n, result.rank5 /= n, result.rank10 /= n, result.rank20 /= n, result.map /= n;
+  result.same_accepted /= n, result.different_rejected /= n;
+  result.ms_per_image = feature_ms_per_image + match_ms_per_image / n;
+  return result;
+}
+
+}  // namespace bodyrec

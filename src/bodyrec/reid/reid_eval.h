@@ -1,0 +1,47 @@
+// `bodyrec eval reid` without the command line: features once per image, then per split train the
+// matcher on the training identities (if it learns), describe probes and gallery, rank, score.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/reid_split.h"
+
+namespace bodyrec {
+
+struct ReidEvalOptions {
+  int train_ids = -1;  // -1: half of the identities present in both cameras
+  int splits = 10;
+  uint32_t seed = 0;
+  bool learn = true;  // false: use each matcher as made (e.g. with a given model), never train it
+  void check() const;  // throws UsageError
+};
+
+struct ReidEvalResult {
+  double rank1 = 0, rank5 = 0, rank10 = 0, rank20 = 0, map = 0;  // means over splits
+  std::vector<double> rank1_per_split;
+  // At the matcher's threshold (similarity > threshold = same person), over probe x gallery pairs:
+  double same_accepted = 0;       // share of same-person pairs accepted
+  double different_rejected = 0;  // share of different-person pairs rejected
+  int probes = 0, gallery = 0;  // per split (the same in every split)
+  int train_ids = 0;
+  double ms_per_image = 0;  // features + descriptor + matching per test image, training excluded
+  std::string matcher;      // summary() of the last split's matcher
+};
+
+// Makes a fresh matcher for each split (so nothing learned leaks from one split into the next).
+using MatcherFactory = std::function<std::unique_ptr<AppearanceMatcher>()>;
+
+// matcher.features() of every image of the data set, in order; `ms` (if given) receives the mean
+// extraction time per image. Throws InputError naming an image that cannot be read.
+std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const AppearanceMatcher& matcher,
+                                                 double* ms = nullptr);
+
+// Throws InputError naming the image that cannot be read.
+ReidEvalResult evaluate_reid(const ReidDataset& data, const MatcherFactory& make, const ReidEvalOptions& options);
+
+}  // namespace bodyrec

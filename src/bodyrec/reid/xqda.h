@@ -1,0 +1,73 @@
+// XQDA, Cross-view Quadratic Discriminant Analysis (Liao et al. CVPR 2015): learns a subspace W and a
+// metric M in it from pairs of images of the same / different people seen by two cameras, so that
+// d(x, z) = (x - z)^T W M W^T (x - z) separates the two kinds of pairs. Here M is diagonal (W is
+// whitened against the same-person covariance), so the model folds into one projection P and the
+// distance is the squared Euclidean distance between P^T x and P^T z.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+namespace bodyrec {
+
+struct XqdaOptions {
+  double regulariser = 1e-3;  // added to the diagonal of the same-person covariance (relative to its mean)
+  int max_dims = 0;           // keep at most this many directions (0 = every one with eigenvalue > 1)
+  void check() const;
+};
+
+// A sample: raw feature, identity, camera (0 = probe side, 1 = gallery side).
+struct XqdaSample {
+  const std::vector<float>* feature = nullptr;
+  int identity = 0;
+  int camera = 0;
+};
+
+struct XqdaModel {
+  cv::Mat projection;      // CV_32F, feature length x dims; embedding = projection^T x
+  double threshold = 0;    // squared distance below which two embeddings are called the same person
+  cv::Mat rows;            // projection^T, continuous (what embed() reads); set by prepare()
+
+  bool empty() const { return projection.empty(); }
+  int input_length() const { return projection.rows; }
+  void prepare() { rows = projection.t(); }  // after setting projection by hand
+  // REQUIRES prepare() called since projection was set; feature.size() == input_length().
+  std::vector<float> embed(const std::vector<float>& feature) const;
+};
+
+// Several XQDA models, each on its own equal-length slice of the feature, fused by summing their
+// distances each divided by its own threshold: the embedding concatenates the slices' embeddings
+// scaled by 1 / sqrt(threshold), so the fused distance is still one squared Euclidean distance.
+struct XqdaEnsemble {
+  std::vector<XqdaModel> parts;
+  double threshold = 0;  // fused squared distance below which two images are called the same person
+  std::string id;        // short fingerprint (part of the descriptor version)
+
+  bool empty() const { return parts.empty(); }
+  int input_length() const;
+  int embed_length() const;
+  // REQUIRES feature.size() == input_length().
+  std::vector<float> embed(const std::vector<float>& feature) const;
+  // Writes / reads cv::FileStorage YAML; load throws InputError naming the file and field at fault.
+  void save(const std::string& path) const;
+  static XqdaEnsemble load(const std::string& path);
+};
+
+// Trains one model per slice (`slices` equal slices of the features). The fused threshold is the
+// balanced-error one on the training pairs, scaled by how much farther unseen people are: a model
+// trained on every other identity present in both cameras gives balanced thresholds on its own
+// training pairs and on the held-out rest, and their ratio is applied (not with fewer than 6 such
+// identities).
+XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, int slices, const XqdaOptions& options = {});
+
+// REQUIRES samples from both cameras, at least two identities present in both, all features the same
+// length. Same-person pairs are (camera 0, camera 1) pairs with equal identity; different-person pairs
+// all other cross-camera pairs. Throws ProcessingError when the data cannot train a model.
+XqdaModel train_xqda(const std::vector<XqdaSample>& samples, const XqdaOptions& options = {});
+
+// Squared Euclidean distance between two embeddings (REQUIRES equal lengths).
+double squared_distance(const std::vector<float>& a, const std::vector<float>& b);
+
+}  // namespace bodyrec

@@ -1,0 +1,118 @@
+#include "bodyrec/reid/xqda.h"
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/reid/cmc.h"
+#include "test_support.h"
+
+namespace bodyrec {
+namespace {
+
+// Identities differ in 5 "signal" dimensions; every image also has large noise in 45 other dimensions,
+// so plain Euclidean distance is mostly noise and a learned metric must find the signal.
+struct Synthetic {
+  std::vector<std::vector<float>> features;
+  std::vector<int> ids, cams;
+};
+
+Synthetic make_data(int identities, uint64_t seed) {
+  cv::RNG rng(seed);
+  Synthetic s;
+  for (int id = 0; id < identities; ++id) {
+    std::vector<float> identity(5);
+    for (float& x : identity) x = static_cast<float>(rng.gaussian(1.0));
+    for (int cam = 0; cam < 2; ++cam) {
+      std::vector<float> f(50);
+      for (int k = 0; k < 50; ++k)
+        f[k] = static_cast<float>(k < 5 ? identity[k] + rng.gaussian(0.05) : rng.gaussian(3.0));
+      s.features.push_back(f);
+      s.ids.push_back(id);
+      s.cams.push_back(cam);
+    }
+  }
+  return s;
+}
+
+double rank1(const Synthetic& test, const XqdaModel* model) {
+  std::vector<std::vector<float>> probes, gallery;
+  std::vector<int> pid, gid;
+  for (size_t i = 0; i < test.features.size(); ++i) {
+    const auto f = model ? model->embed(test.features[i]) : test.features[i];
+    (test.cams[i] == 0 ? probes : gallery).push_back(f);
+    (test.cams[i] == 0 ? pid : gid).push_back(test.ids[i]);
+  }
+  cv::Mat sim(static_cast<int>(probes.size()), static_cast<int>(gallery.size()), CV_64F);
+  for (int p = 0; p < sim.rows; ++p)
+    for (int g = 0; g < sim.cols; ++g) sim.at<double>(p, g) = -squared_distance(probes[p], gallery[g]);
+  return ranking_scores(sim, pid, gid, 1).cmc[0];
+}
+
+XqdaModel train(const Synthetic& s) {
+  std::vector<XqdaSample> samples;
+  for (size_t i = 0; i < s.features.size(); ++i) samples.push_back({&s.features[i], s.ids[i], s.cams[i]});
+  return train_xqda(samples);
+}
+
+TEST(Xqda, LearnsTheDimensionsThatSeparatePeople) {
+  const Synthetic training = make_data(60, 1), test = make_data(30, 2);
+  const XqdaModel model = train(training);
+  std::vector<XqdaSample> samples;
+  for (size_t i = 0; i < training.features.size(); ++i)
+    samples.push_back({&training.features[i], training.ids[i], training.cams[i]});
+  const XqdaEnsemble fused = train_xqda_ensemble(samples, 1);  // threshold chosen on held-out people
+  EXPECT_EQ(model.input_length(), 50);
+  EXPECT_GE(model.projection.cols, 5);
+  const double learned = rank1(test, &model), plain = rank1(test, nullptr);
+  EXPECT_GE(learned, 0.9);
+  EXPECT_LT(plain, 0.5);
+  // The held-out threshold separates most same-person from different-person pairs of unseen people.
+  int same_ok = 0, diff_ok = 0, diff_total = 0;
+  for (size_t i = 0; i < test.features.size(); i += 2) {
+    const auto p = fused.embed(test.features[i]);
+    for (size_t j = 1; j < test.features.size(); j += 2) {
+      const bool accepted = squared_distance(p, fused.embed(test.features[j])) < fused.threshold;
+      if (test.ids[i] == test.ids[j]) same_ok += accepted;
+      else diff_ok += !accepted, ++diff_total;
+    }
+  }
+  EXPECT_GE(same_ok, 24);
+  EXPECT_GE(diff_ok, diff_total * 8 / 10);
+}
+
+TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
+  const Synthetic s = make_data(20, 3);
+  std::vector<XqdaSample> samples;
+  for (size_t i = 0; i < s.features.size(); ++i) samples.push_back({&s.features[i], s.ids[i], s.cams[i]});
+  const XqdaEnsemble model = train_xqda_ensemble(samples, 2);  // two 25-float slices
+  ASSERT_EQ(model.parts.size(), 2u);
+  EXPECT_EQ(model.input_length(), 50);
+  testing::TempDir dir;
+  const std::string path = (dir / "model.yml").string();
+  model.save(path);
+  const XqdaEnsemble back = XqdaEnsemble::load(path);
+  EXPECT_EQ(back.id, model.id);
+  EXPECT_EQ(back.id.size(), 8u);
+  EXPECT_DOUBLE_EQ(back.threshold, model.threshold);
+  EXPECT_EQ(back.embed(s.features[0]), model.embed(s.features[0]));
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "none.yml").string()); }),
+                                "none.yml"));
+  testing::write_text(dir / "other.yml", "%YAML:1.0\n---\nformat: something-else\n");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "other.yml").string()); }),
+                                "format"));
+  testing::write_text(dir / "garbage.yml", "\x01\x02 not yaml {{{");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "garbage.yml").string()); }),
+                                "garbage.yml"));
+}
+
+TEST(Xqda, RefusesDataThatCannotTrain) {
+  const Synthetic s = make_data(3, 4);
+  std::vector<XqdaSample> one_camera;
+  for (size_t i = 0; i < s.features.size(); i += 2) one_camera.push_back({&s.features[i], s.ids[i], 0});
+  EXPECT_THROW(train_xqda(one_camera), ProcessingError);
+  EXPECT_THROW(train_xqda({}), ProcessingError);
+}
+
+}  // namespace
+}  // namespace bodyrec

@@ -1,0 +1,134 @@
+// `bodyrec eval reid` and `bodyrec train-reid` as a user meets them: on a tiny two-camera set of
+// generated person images, with broken inputs.
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace bodyrec::testing {
+namespace {
+
+// A person: shirt and trousers of the identity's colours, per-image noise; camera 2 is darker and
+// shifted. 10 identities in both cameras (p00..p09), p10 only in camera 2 (a distractor).
+cv::Mat person(int id, int cam) {
+  cv::RNG colours(static_cast<uint64_t>(100 + id));
+  const cv::Scalar shirt(colours.uniform(0, 256), colours.uniform(0, 256), colours.uniform(0, 256));
+  const cv::Scalar trousers(colours.uniform(0, 256), colours.uniform(0, 256), colours.uniform(0, 256));
+  cv::Mat image(128, 48, CV_8UC3, cv::Scalar(120, 130, 125));
+  const int dx = cam == 1 ? 3 : 0;
+  cv::rectangle(image, cv::Rect(10 + dx, 12, 26, 50), shirt, cv::FILLED);
+  cv::rectangle(image, cv::Rect(13 + dx, 62, 20, 58), trousers, cv::FILLED);
+  cv::circle(image, {23 + dx, 7}, 6, cv::Scalar(80, 110, 160), cv::FILLED);
+  if (cam == 1) image.convertTo(image, -1, 0.8, 0);
+  cv::Mat noise(image.size(), CV_8UC3);
+  cv::RNG rng(static_cast<uint64_t>(id * 2 + cam));
+  rng.fill(noise, cv::RNG::UNIFORM, 0, 20);
+  return image + noise;
+}
+
+const fs::path& person_set() {
+  static TempDir dir;
+  static const fs::path root = [] {
+    for (int id = 0; id <= 10; ++id)
+      for (int cam = 0; cam < 2; ++cam) {
+        if (id == 10 && cam == 0) continue;
+        const fs::path p = dir / ("cam" + std::to_string(cam + 1)) / ("p" + std::string(id < 10 ? "0" : "") +
+                                                                      std::to_string(id) + ".png");
+        fs::create_directories(p.parent_path());
+        cv::imwrite(p.string(), person(id, cam));
+      }
+    return dir.path();
+  }();
+  return root;
+}
+
+std::vector<std::string> eval_args(const std::vector<std::string>& extra) {
+  std::vector<std::string> a = {"eval", "reid", "--root", person_set().string(), "--id-regex", "/p(\\d+)\\.png$",
+                                "--cam-regex", "^cam(\\d)/", "--json"};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return a;
+}
+
+TEST(EvalReidCli, ScoresTheUnlearnedFallbackWithDistractors) {
+  const RunResult r = run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "4", "--splits", "3"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["probes"].get<int>(), 6);   // 10 in both cameras - 4 for training
+  EXPECT_EQ(j["gallery"].get<int>(), 7);  // their camera-2 images + the distractor
+  EXPECT_DOUBLE_EQ(j["rank1"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(j["rank5"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(j["map"].get<double>(), 1.0);
+  EXPECT_GT(j["ms_per_image"].get<double>(), 0.0);
+  for (const char* key : {"rank10", "rank20"}) EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(contains(r.out, "unlearned"));
+}
+
+TEST(EvalReidCli, DefaultTrainsXqdaAndKazeIsMeasured) {
+  const RunResult d = run_bodyrec(eval_args({"--train-ids", "5", "--splits", "2"}));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  EXPECT_TRUE(contains(d.out, "XQDA"));
+  EXPECT_GE(last_json_line(d.out)["rank1"].get<double>(), 0.8);
+  const RunResult k = run_bodyrec(eval_args({"--matcher", "kaze", "--train-ids", "5", "--splits", "1"}));
+  ASSERT_EQ(k.exit_code, 0) << k.err;
+  EXPECT_EQ(last_json_line(k.out)["probes"].get<int>(), 5);
+  EXPECT_TRUE(contains(k.out, "KAZE"));
+}
+
+TEST(TrainReidCli, WritesAModelThatEvalReidUses) {
+  TempDir dir;
+  const std::string model = (dir / "reid.yml").string();
+  const RunResult t = run_bodyrec({"train-reid", "--root", person_set().string(), "--id-regex", "/p(\\d+)\\.png$",
+                                   "--cam-regex", "^cam(\\d)/", "--out", model});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  ASSERT_TRUE(fs::exists(model));
+  const RunResult r = run_bodyrec(eval_args({"--model", model, "--train-ids", "0", "--splits", "1"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(last_json_line(r.out)["probes"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(last_json_line(r.out)["rank1"].get<double>(), 1.0);  // trained on these very people
+  const RunResult bad = run_bodyrec(eval_args({"--model", (dir / "none.yml").string()}));
+  EXPECT_EQ(bad.exit_code, 3);
+}
+
+TEST(EvalReidCli, BadInputGivesOneLineErrorsAndExitCodes) {
+  const std::string root = person_set().string();
+  auto run = [&](const std::vector<std::string>& args) { return run_bodyrec(args); };
+  RunResult r = run({"eval", "reid", "--root", root, "--id-regex", "/p\\d+\\.png$", "--cam-regex", "^cam(\\d)/"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "capture group")) << r.err;
+  r = run({"eval", "reid", "--root", root, "--id-regex", "/q(\\d+)\\.png$", "--cam-regex", "^cam(\\d)/"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "no image path matches")) << r.err;
+  r = run({"eval", "reid", "--root", root, "--id-regex", "/p(\\d+)\\.png$", "--cam-regex", "^cam(\\d)/",
+           "--matcher", "sift"});
+  EXPECT_EQ(r.exit_code, 2);
+  r = run({"eval", "reid", "--root", root, "--id-regex", "/p(\\d+)\\.png$", "--cam-regex", "^cam(\\d)/",
+           "--train-ids", "10"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "leaves no identity to test")) << r.err;
+  // Identities each in one camera only.
+  TempDir lonely;
+  fs::create_directories(lonely / "cam1");
+  fs::create_directories(lonely / "cam2");
+  cv::imwrite((lonely / "cam1" / "p01.png").string(), person(1, 0));
+  cv::imwrite((lonely / "cam2" / "p02.png").string(), person(2, 1));
+  r = run({"eval", "reid", "--root", lonely.path().string(), "--id-regex", "/p(\\d+)\\.png$", "--cam-regex",
+           "^cam(\\d)/"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "both cameras")) << r.err;
+  // An unreadable image is named.
+  cv::imwrite((lonely / "cam2" / "p01.png").string(), person(1, 1));
+  write_text(lonely / "cam1" / "p02.png", "not a png");
+  r = run({"eval", "reid", "--root", lonely.path().string(), "--id-regex", "/p(\\d+)\\.png$", "--cam-regex",
+           "^cam(\\d)/", "--train-ids", "0"});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "p02.png: cannot read the image")) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
