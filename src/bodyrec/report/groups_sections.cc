@@ -86,8 +86,8 @@ Section group_counts(const RunData& run) {
   frame.y_label = "count";
   Section s{"groups", "Groups over time", ""};
   s.html = "<p>People tracked, groups formed and the size of the largest group in every frame (at most " +
-           std::to_string(most_groups) + " groups at once; largest group " + std::to_string(biggest) +
-           " people).</p>" +
+           std::to_string(most_groups) + (most_groups == 1 ? " group" : " groups") + " at once; largest group " +
+           std::to_string(biggest) + " people).</p>" +
            html_legend({{people.colour, people.name}, {groups.colour, groups.name}, {largest.colour, largest.name}}) +
            line_plot({people, groups, largest}, frame);
   return s;

@@ -27,13 +27,13 @@ section{background:var(--card);border:1px solid var(--line);border-radius:10px;p
 section h2{margin:0 0 6px;font-size:19px}section h3{font-size:16px;margin:18px 0 4px}
 p{margin:4px 0 10px}.note{color:var(--muted);font-style:italic}
 svg.plot{width:100%;height:auto;display:block;font-size:11px;fill:var(--ink)}
-svg.rose{max-width:340px}
+svg.rose{max-width:360px}
 svg .grid{stroke:var(--line);stroke-width:1}svg .axis,svg .tick{stroke:#94a3b8;stroke-width:1}
 svg text{fill:#475569}svg text.title{fill:var(--ink);font-size:12px;font-weight:600}svg text.value{font-size:11px;fill:var(--ink)}
 svg .petal{fill-opacity:.75;stroke:#fff;stroke-width:1}
 .legend{display:flex;flex-wrap:wrap;gap:4px 16px;font-size:13px;margin:4px 0 6px}
 .legend i{display:inline-block;width:12px;height:12px;border-radius:3px;margin-right:6px;vertical-align:-1px}
-.side{display:flex;flex-wrap:wrap;gap:16px;align-items:center}.side .rose{flex:0 1 340px}.side p{flex:1 1 280px}
+.side{display:flex;flex-wrap:wrap;gap:16px;align-items:center}.side .rose{flex:0 1 360px}.side p{flex:1 1 280px}
 .frames{display:grid;grid-template-columns:repeat(auto-fill,minmax(300px,1fr));gap:12px}
 figure{margin:0}figure img{width:100%;border-radius:6px;display:block;border:1px solid var(--line)}
 figcaption{font-size:12px;color:var(--muted);text-align:center;padding-top:2px}

@@ -192,7 +192,7 @@ std::string strip_timeline(const std::vector<StripRow>& rows, double x0, double 
 }
 
 std::string polar_rose(const std::vector<double>& weights, const std::string& colour, int size) {
-  const double c = size / 2.0, radius = size / 2.0 - 28;
+  const double c = size / 2.0, radius = size / 2.0 - 54;  // room for the labels outside the circle
   std::string out = svg_open(size, size, "plot rose", "direction rose");
   double largest = 0;
   for (double w : weights) largest = std::max(largest, w);
@@ -204,8 +204,8 @@ std::string polar_rose(const std::vector<double>& weights, const std::string& co
     const double a = k * kPi / 2;
     out += "<line class=\"grid\" x1=\"" + num(c) + "\" y1=\"" + num(c) + "\" x2=\"" + num(c + radius * std::cos(a)) +
            "\" y2=\"" + num(c - radius * std::sin(a)) + "\"/>";
-    const double lx = c + (radius + 14) * std::cos(a), ly = c - (radius + 14) * std::sin(a) + 4;
-    out += text(lx, ly, names[k], k == 0 ? "end" : k == 2 ? "start" : "middle");
+    const double lx = c + (radius + 6) * std::cos(a), ly = c - (radius + 8) * std::sin(a) + (k == 3 ? 10 : k == 1 ? 0 : 4);
+    out += text(lx, ly, names[k], k == 0 ? "start" : k == 2 ? "end" : "middle");
   }
   const int n = static_cast<int>(weights.size());
   for (int i = 0; i < n && largest > 0; ++i) {

@@ -76,7 +76,7 @@ std::string strip_timeline(const std::vector<StripRow>& rows, double x0, double 
 
 // A polar histogram (rose): `weights[i]` is the weight of the sector centred on i * 360 / n degrees,
 // 0 = right, 90 = up, counter-clockwise; petal radius ~ sqrt(weight) so areas compare honestly.
-std::string polar_rose(const std::vector<double>& weights, const std::string& colour, int size = 320);
+std::string polar_rose(const std::vector<double>& weights, const std::string& colour, int size = 340);
 
 // Markers on rows: an event timeline. Each point has an x, a row index, a colour and a hover title.
 struct EventPoint {
