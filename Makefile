@@ -31,6 +31,8 @@ run: build
 	$(BIN) groups $(VTEST) --fps 7 $(if $(CALIB),--calibration $(CALIB)) --jsonl $(OUT)/groups.jsonl \
 	    --mot $(OUT)/groups.mot.txt --annotate $(OUT)/groups.avi
 	@echo "bodyrec: wrote $(OUT)/groups.jsonl, $(OUT)/groups.mot.txt and the annotated video $(OUT)/groups.avi"
+	$(BIN) report $(OUT)/groups.jsonl --source $(VTEST) --out $(OUT)/report.html
+	@echo "bodyrec: open $(abspath $(OUT)/report.html) in a browser (it embeds images of people)"
 
 # The whole suite; tests labelled `data` skip with a message when ../shared/datasets is absent.
 test: build

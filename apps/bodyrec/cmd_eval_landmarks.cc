@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/sinks.h"
 #include "bodyrec/landmarks/body_shape.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
 #include "bodyrec/landmarks/landmark_metrics.h"
@@ -12,14 +13,28 @@ namespace bodyrec::cli {
 namespace {
 
 struct EvalLandmarksCommand {
-  std::string xml, shape;
+  std::string xml, shape, per_person;
   bool json = false;
 
   void run() const {
     const BodyShapeModel model(shape);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
-    const LandmarkScores s = evaluate_body_shape(model, data, xml);
+    std::vector<PersonLandmarkError> errors;
+    const LandmarkScores s = evaluate_body_shape(model, data, xml, &errors);
+    if (!per_person.empty()) {
+      JsonlWriter out(per_person);
+      for (size_t i = 0; i < errors.size(); ++i) {
+        const auto& e = errors[i];
+        out.write({{"person", i},
+                   {"image", data.images[e.image].path},
+                   {"mean_px", e.mean_px},
+                   {"rel_height", e.mean_px / e.box_height},
+                   {"rel_width", e.mean_px / e.image_width},
+                   {"contour_px", e.contour_px},
+                   {"box_height", e.box_height}});
+      }
+    }
     print_landmark_scores(xml, s);
     if (json) std::printf("%s\n", landmark_scores_json(s).dump().c_str());
   }
@@ -34,6 +49,9 @@ void add(CLI::App& eval) {
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
   sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  sub->add_option("--per-person", command->per_person,
+                  "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "
+                  "contour_px); `bodyrec report --eval FILE` draws their histogram");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (mean_px, mean_rel_height, mean_rel_width, p90_rel_height, "
                 "persons, ms_per_person, ...)");

@@ -1,6 +1,7 @@
 // The landmarking commands end to end on a drawn Penn-Fudan-like folder: make-contour-set, train-shape,
 // train-detector, eval landmarks, landmark; and their errors with exit codes.
 #include <filesystem>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,26 @@ TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
   EXPECT_NEAR(j["mean_rel_width"].get<double>(), j["mean_px"].get<double>() / 240, 1e-9);
   EXPECT_LT(j["mean_px"].get<double>(), 25.0);  // people are 150 px tall
   EXPECT_LE(j["point_to_contour_px"].get<double>(), j["mean_px"].get<double>());
+
+  // --per-person: one JSON line per scored person whose mean is the summary's.
+  const RunResult p = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                   path("shape.dat").string(), "--per-person", path("errors.jsonl").string()});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  std::istringstream lines(read_text(path("errors.jsonl")));
+  std::string line;
+  double sum_px = 0, sum_rel = 0;
+  int persons = 0;
+  while (std::getline(lines, line)) {
+    const auto row = nlohmann::json::parse(line);
+    EXPECT_EQ(row["person"], persons);
+    EXPECT_TRUE(contains(row["image"].get<std::string>(), "images"));
+    sum_px += row["mean_px"].get<double>();
+    sum_rel += row["rel_height"].get<double>();
+    ++persons;
+  }
+  EXPECT_EQ(persons, 2);
+  EXPECT_NEAR(sum_px / persons, j["mean_px"].get<double>(), 1e-9);
+  EXPECT_NEAR(sum_rel / persons, j["mean_rel_height"].get<double>(), 1e-9);
 }
 
 TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {

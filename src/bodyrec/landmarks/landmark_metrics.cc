@@ -61,13 +61,14 @@ LandmarkScores summarize_landmark_errors(const std::vector<PersonLandmarkError>&
 }
 
 LandmarkScores evaluate_body_shape(const BodyShapeModel& model, const LandmarkDataset& data,
-                                   const std::string& data_name) {
+                                   const std::string& data_name, std::vector<PersonLandmarkError>* per_person) {
   if (data.landmarks != 0 && data.landmarks != model.landmarks())
     throw InputError(data_name + ": has " + std::to_string(data.landmarks) + " landmarks per box, the model " +
                      std::to_string(model.landmarks()));
   std::vector<PersonLandmarkError> errors;
   double fit_ms = 0;
-  for (const auto& image : data.images) {
+  for (size_t i = 0; i < data.images.size(); ++i) {
+    const auto& image = data.images[i];
     const cv::Mat gray = BodyShapeModel::prepare(image.image);
     for (const auto& person : image.people) {
       if (person.ignore || person.landmarks.empty()) continue;
@@ -75,10 +76,12 @@ LandmarkScores evaluate_body_shape(const BodyShapeModel& model, const LandmarkDa
       const auto predicted = model.fit(gray, person.box);
       fit_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       errors.push_back(person_landmark_error(predicted, person.landmarks, person.box, image.image.cols));
+      errors.back().image = static_cast<int>(i);
     }
   }
   LandmarkScores s = summarize_landmark_errors(errors);
   s.ms_per_person = errors.empty() ? 0.0 : fit_ms / static_cast<double>(errors.size());
+  if (per_person) *per_person = std::move(errors);
   return s;
 }
 

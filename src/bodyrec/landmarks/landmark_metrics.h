@@ -18,6 +18,7 @@ struct PersonLandmarkError {
   double contour_px = 0;       // mean distance from each predicted point to the true closed outline
   double box_height = 1;
   double image_width = 1;
+  int image = -1;              // index into LandmarkDataset::images (set by evaluate_body_shape)
 };
 
 // REQUIRES: predicted.size() == truth.size() > 0.
@@ -37,9 +38,11 @@ struct LandmarkScores {
 LandmarkScores summarize_landmark_errors(const std::vector<PersonLandmarkError>& errors);
 
 // Fits `model` inside every non-ignored ground-truth box with landmarks and scores it (timing only the
-// fitting). Throws InputError when the dataset's landmark count differs from the model's.
+// fitting). Throws InputError when the dataset's landmark count differs from the model's. When
+// `per_person` is given it receives every person's error, in dataset order.
 LandmarkScores evaluate_body_shape(const BodyShapeModel& model, const LandmarkDataset& data,
-                                   const std::string& data_name);
+                                   const std::string& data_name,
+                                   std::vector<PersonLandmarkError>* per_person = nullptr);
 
 // The value at fraction q (0..1) of the sorted values, interpolating between ranks. REQUIRES: non-empty.
 double quantile(std::vector<double> values, double q);

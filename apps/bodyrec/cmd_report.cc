@@ -1,0 +1,100 @@
+// `bodyrec report`: one self-contained HTML page about a run (and its evaluations) that people can look at.
+#include <ctime>
+#include <fstream>
+#include <map>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/io/frame_source.h"
+#include "bodyrec/report/report.h"
+#include "command.h"
+
+namespace bodyrec::cli {
+namespace {
+
+struct ReportCommand {
+  std::string run_path, source, gallery, out;
+  std::vector<std::string> evals;
+  int key_frames = 5;
+  bool no_images = false;
+
+  // Decodes the chosen frames of the source and draws the run's boxes on them.
+  std::vector<report::KeyFrame> decode_key_frames(const report::RunData& run) const {
+    std::vector<report::KeyFrame> frames;
+    const auto chosen = report::choose_key_frames(run, key_frames);
+    if (chosen.empty()) return frames;
+    std::map<int, const report::GroupsFrameRow*> rows;
+    for (const auto& r : run.groups) rows[r.frame] = &r;
+    SourceOptions options;
+    options.path = source;
+    auto video = open_source(options);
+    Frame frame;
+    size_t next = 0;
+    while (next < chosen.size() && video->read(frame)) {
+      if (frame.index != chosen[next]) continue;
+      const auto& row = *rows.at(frame.index);
+      report::KeyFrame k;
+      k.frame = frame.index;
+      k.time = row.time;
+      k.image = frame.image.clone();
+      report::annotate_groups_frame(k.image, row);
+      int leaders = 0;
+      for (const auto& l : row.leaders) leaders += l.state == "tracking";
+      k.caption = "frame " + std::to_string(frame.index) + " · " + std::to_string(row.people.size()) + " people · " +
+                  std::to_string(leaders) + (leaders == 1 ? " leader" : " leaders");
+      frames.push_back(std::move(k));
+      ++next;
+    }
+    if (next < chosen.size())
+      throw InputError(source + ": ends before frame " + std::to_string(chosen[next]) + " of " + run_path +
+                       " (is it the run's video?)");
+    return frames;
+  }
+
+  void run() const {
+    if (!gallery.empty())
+      throw UsageError("--gallery is not available yet: the gallery store is not wired into `report`");
+    report::ReportInput input;
+    input.run = report::read_run(run_path);
+    for (const auto& e : evals) input.evals.push_back(report::read_eval(e));
+    input.source = source;
+    input.images = !no_images;
+    const std::time_t now = std::time(nullptr);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+    input.generated = stamp;
+    if (!source.empty() && input.images && input.run.kind == report::RunKind::kGroups)
+      input.key_frames = decode_key_frames(input.run);
+    const std::string page = report::render_report(input);
+    std::ofstream file(out, std::ios::binary);
+    if (!file || !(file << page) || !file.flush()) throw ProcessingError(out + ": cannot write the report");
+    std::printf("bodyrec: wrote %s (%zu KB; %s run, %d frames, %zu evaluations, %zu key frames)\n", out.c_str(),
+                page.size() / 1024, report::to_string(input.run.kind), input.run.frame_count(), input.evals.size(),
+                input.key_frames.size());
+  }
+};
+
+void add(CLI::App& app) {
+  auto command = std::make_shared<ReportCommand>();
+  CLI::App* sub = app.add_subcommand("report", "Write one self-contained HTML page about a run and its evaluations");
+  sub->footer(
+      "The page embeds everything (inline CSS and SVG plots, JPEG images as data URIs): no scripts, nothing\n"
+      "loaded from the network. It shows images of people unless --no-images is given.\n"
+      "Example: bodyrec report out/groups.jsonl --source /usr/share/doc/opencv-doc/examples/data/vtest.avi "
+      "--out out/report.html\n"
+      "         bodyrec report run.jsonl --eval viper.json --eval hotel.json --out report.html");
+  sub->add_option("run", command->run_path, "Run JSON lines (bodyrec groups --jsonl, bodyrec reid)")->required();
+  sub->add_option("--source", command->source, "The run's video: key frames are decoded and annotated from it");
+  sub->add_option("--eval", command->evals,
+                  "File holding the --json output of an eval command (kind from its keys); repeatable. Per-person "
+                  "landmark errors (eval landmarks --per-person) give a histogram");
+  sub->add_option("--gallery", command->gallery, "Gallery database: users and their 8 views (not available yet)");
+  sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(CLI::Range(0, 12));
+  sub->add_flag("--no-images", command->no_images, "Leave every image of a person out of the page");
+  sub->add_option("--out", command->out, "The HTML file to write")->required();
+  sub->callback([command] { command->run(); });
+}
+
+const bool registered = register_command({"", 200, add});
+
+}  // namespace
+}  // namespace bodyrec::cli

@@ -1,0 +1,168 @@
+#include "bodyrec/report/report.h"
+
+#include <cmath>
+#include <set>
+
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/io/annotate.h"
+#include "bodyrec/report/html.h"
+#include "bodyrec/report/sections.h"
+
+namespace bodyrec::report {
+namespace {
+
+// Light palette, system sans-serif fonts (nothing fetched), responsive width, print-friendly.
+const char* const kCss = R"css(
+:root{--ink:#1e293b;--muted:#64748b;--line:#e2e8f0;--bg:#f8fafc;--card:#fff;--accent:#2563eb}
+*{box-sizing:border-box}
+body{margin:0;background:var(--bg);color:var(--ink);font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",Helvetica,Arial,sans-serif}
+main{max-width:1100px;margin:0 auto;padding:24px 20px 48px}
+header h1{margin:0 0 4px;font-size:26px}
+header .meta{display:flex;flex-wrap:wrap;gap:6px 18px;color:var(--muted);font-size:14px}
+header .meta b{color:var(--ink);font-weight:600}
+.privacy{margin:14px 0 6px;padding:10px 14px;border-left:4px solid #f59e0b;background:#fffbeb;border-radius:6px;font-size:14px}
+nav{margin:10px 0 0;font-size:14px}nav a{color:var(--accent);text-decoration:none;margin-right:14px}
+section{background:var(--card);border:1px solid var(--line);border-radius:10px;padding:16px 20px;margin:18px 0;box-shadow:0 1px 2px rgba(15,23,42,.04)}
+section h2{margin:0 0 6px;font-size:19px}section h3{font-size:16px;margin:18px 0 4px}
+p{margin:4px 0 10px}.note{color:var(--muted);font-style:italic}
+svg.plot{width:100%;height:auto;display:block;font-size:11px;fill:var(--ink)}
+svg.rose{max-width:360px}
+svg .grid{stroke:var(--line);stroke-width:1}svg .axis,svg .tick{stroke:#94a3b8;stroke-width:1}
+svg text{fill:#475569}svg text.title{fill:var(--ink);font-size:12px;font-weight:600}svg text.value{font-size:11px;fill:var(--ink)}
+svg .petal{fill-opacity:.75;stroke:#fff;stroke-width:1}
+.legend{display:flex;flex-wrap:wrap;gap:4px 16px;font-size:13px;margin:4px 0 6px}
+.legend i{display:inline-block;width:12px;height:12px;border-radius:3px;margin-right:6px;vertical-align:-1px}
+.side{display:flex;flex-wrap:wrap;gap:16px;align-items:center}.side .rose{flex:0 1 360px}.side p{flex:1 1 280px}
+.frames{display:grid;grid-template-columns:repeat(auto-fill,minmax(300px,1fr));gap:12px}
+figure{margin:0}figure img{width:100%;border-radius:6px;display:block;border:1px solid var(--line)}
+figcaption{font-size:12px;color:var(--muted);text-align:center;padding-top:2px}
+.users{display:flex;flex-direction:column;gap:10px}
+.user{display:grid;grid-template-columns:150px repeat(8,minmax(0,96px));gap:6px;align-items:end;padding-bottom:10px;border-bottom:1px solid var(--line)}
+.user .who{display:flex;flex-direction:column;font-size:12px;color:var(--muted);align-self:center}.user .who b{font-size:15px}
+.view img{aspect-ratio:1/2;object-fit:contain;background:#f1f5f9}
+.view .empty{aspect-ratio:1/2;border:2px dashed #cbd5e1;border-radius:6px;display:flex;align-items:center;justify-content:center;color:#94a3b8;font-size:11px;text-align:center}
+.view .withheld{border-style:solid;background:#f1f5f9}
+table{border-collapse:collapse;font-size:13px;margin:6px 0 10px;width:100%}
+th,td{border-bottom:1px solid var(--line);padding:4px 8px;text-align:left;vertical-align:top}
+th{background:#f1f5f9;font-weight:600}.num{text-align:right;font-variant-numeric:tabular-nums}
+details summary{cursor:pointer;color:var(--accent);font-size:14px}
+footer{color:var(--muted);font-size:12px;text-align:center}
+)css";
+
+std::vector<StageTimes> stage_times(const RunData& run) {
+  std::vector<StageTimes> out;
+  if (run.kind == RunKind::kGroups)
+    for (const auto& r : run.groups) out.push_back(r.ms);
+  else
+    for (const auto& r : run.reid) out.push_back(r.ms);
+  return out;
+}
+
+Section header(const ReportInput& input) {
+  const RunData& run = input.run;
+  std::set<int> tracks;
+  double first = 0, last = 0;
+  int first_frame = 0, last_frame = 0;
+  if (run.kind == RunKind::kGroups) {
+    for (const auto& r : run.groups)
+      for (const auto& p : r.people) tracks.insert(p.id);
+    first = run.groups.front().time, last = run.groups.back().time;
+    first_frame = run.groups.front().frame, last_frame = run.groups.back().frame;
+  } else {
+    for (const auto& r : run.reid)
+      for (const auto& b : r.bodies) tracks.insert(b.track);
+    first = run.reid.front().time, last = run.reid.back().time;
+    first_frame = run.reid.front().frame, last_frame = run.reid.back().frame;
+  }
+  Section s{"header", "", ""};
+  auto item = [](const std::string& k, const std::string& v) {
+    return "<span>" + html_escape(k) + " <b>" + html_escape(v) + "</b></span>";
+  };
+  s.html = "<h1>bodyrec report: " + std::string(to_string(run.kind)) + " run</h1><div class=\"meta\">" +
+           item("run", run.name) + (input.source.empty() ? "" : item("input", input.source)) +
+           item("generated", input.generated) +
+           item("frames", std::to_string(run.frame_count()) + " (" + std::to_string(first_frame) + "–" +
+                              std::to_string(last_frame) + ", " + fmt(last - first, 1) + " s)") +
+           item("tracks", std::to_string(tracks.size())) +
+           (input.evals.empty() ? "" : item("evaluations", std::to_string(input.evals.size()))) + "</div>";
+  s.html += input.images
+                ? "<div class=\"privacy\"><b>Privacy:</b> this report embeds images of people (key frames and "
+                  "gallery views) and their identities. Treat it as personal data: share it only with people "
+                  "allowed to see them, and delete it when done. Build it with <code>--no-images</code> to leave "
+                  "every person's pixels out.</div>"
+                : "<div class=\"privacy\"><b>Privacy:</b> built with <code>--no-images</code>: no image of a "
+                  "person is embedded; it still holds track and identity numbers.</div>";
+  return s;
+}
+
+}  // namespace
+
+std::string role_colour(const std::string& role) {
+  if (role == "leader") return "#2563eb";
+  if (role == "member") return "#16a34a";
+  if (role == "non-member") return "#dc2626";
+  if (role == "potential-member" || role == "potential member") return "#f59e0b";
+  return "#94a3b8";
+}
+
+std::vector<Section> build_sections(const ReportInput& input) {
+  std::vector<Section> out{header(input)};
+  if (input.run.kind == RunKind::kGroups) add_groups_sections(input, out);
+  if (input.have_gallery) out.push_back(users_section(input));
+  if (input.run.kind == RunKind::kReid) add_reid_sections(input, out);
+  add_speed_section(stage_times(input.run), out);
+  add_eval_sections(input, out);
+  return out;
+}
+
+std::string render_report(const ReportInput& input) {
+  const auto sections = build_sections(input);
+  std::string page =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+      "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
+      "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; img-src data:; style-src "
+      "'unsafe-inline'\"><title>bodyrec report: " +
+      html_escape(input.run.name) + "</title><style>" + kCss + "</style></head><body><main>";
+  page += "<header>" + sections.front().html + "<nav>";
+  for (size_t i = 1; i < sections.size(); ++i)
+    page += "<a href=\"#" + sections[i].id + "\">" + html_escape(sections[i].title) + "</a>";
+  page += "</nav></header>";
+  for (size_t i = 1; i < sections.size(); ++i)
+    page += "<section id=\"" + sections[i].id + "\"><h2>" + html_escape(sections[i].title) + "</h2>" +
+            sections[i].html + "</section>";
+  page += "<footer>bodyrec " BODYREC_VERSION " · self-contained page: no scripts, nothing loaded from the network"
+          "</footer></main></body></html>\n";
+  return page;
+}
+
+void annotate_groups_frame(cv::Mat& image, const GroupsFrameRow& row) {
+  auto bgr = [](const std::string& role) {
+    if (role == "leader") return colors::kBlue;
+    if (role == "member") return colors::kGreen;
+    if (role == "non-member") return colors::kRed;
+    if (role == "potential-member" || role == "potential member") return colors::kOrange;
+    return colors::kWhite;
+  };
+  for (const auto& p : row.people) {
+    std::string label = std::to_string(p.id);
+    if (p.group >= 0) label += " g" + std::to_string(p.group);
+    draw_labelled_box(image, p.box, bgr(p.role), label, p.state == "lost" ? 1 : 2);
+  }
+  for (const auto& l : row.leaders) {
+    if (!l.box) continue;
+    cv::rectangle(image, cv::Rect(*l.box), colors::kBlue, 3, cv::LINE_AA);
+    if (!l.degrees || l.magnitude <= 0.05) continue;
+    // 10 frames of travel, at least 25 px, so that walking is visible (as in the annotated video).
+    const double length = std::max(25.0, l.magnitude * 10.0), a = *l.degrees * CV_PI / 180.0;
+    const cv::Point2d from(l.box->x + l.box->width / 2, l.box->y + l.box->height / 3);
+    cv::arrowedLine(image, from, from + cv::Point2d(std::cos(a), -std::sin(a)) * length, colors::kYellow, 2,
+                    cv::LINE_AA, 0, 0.25);
+  }
+  int tracking = 0;
+  for (const auto& l : row.leaders) tracking += l.state == "tracking";
+  draw_caption(image, "frame " + std::to_string(row.frame) + "  people " + std::to_string(row.people.size()) +
+                          "  leaders " + std::to_string(tracking));
+}
+
+}  // namespace bodyrec::report

@@ -1,0 +1,24 @@
+// Section builders behind render_report (report.h), one per file by run kind.
+#pragma once
+
+#include <vector>
+
+#include "bodyrec/report/report.h"
+
+namespace bodyrec::report {
+
+// Groups run: role timeline, group counts, leader direction rose, key frames.
+void add_groups_sections(const ReportInput& input, std::vector<Section>& out);
+// Re-identification run: events timeline, identity strip per body.
+void add_reid_sections(const ReportInput& input, std::vector<Section>& out);
+// Gallery users, one row of 8 views each (any run kind, when a gallery was given).
+Section users_section(const ReportInput& input);
+// Milliseconds per frame per stage (both run kinds).
+void add_speed_section(const std::vector<StageTimes>& frames, std::vector<Section>& out);
+// Evaluations: summary table, CMC curves, per-scene pair F1, landmark error histograms.
+void add_eval_sections(const ReportInput& input, std::vector<Section>& out);
+
+// A small categorical palette (CSS colours) for users and series; index wraps.
+const char* palette(int index);
+
+}  // namespace bodyrec::report
