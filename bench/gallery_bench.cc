@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using bodyrec::Gallery;
 using bodyrec::GalleryOptions;
 using bodyrec::kAllViews;
-using bodyrec::PartialScan;
+using bodyrec::GalleryScan;
 using bodyrec::View;
 using bodyrec::store::testing::make_scan;
 
@@ -33,8 +33,8 @@ struct ScratchDir {
 };
 
 // A person-sized scan (128x64, the size the reid pipeline keeps) with `dim`-long float features.
-PartialScan bench_scan(View view, double quality, int seed, int feature_rows, int feature_cols) {
-  PartialScan s = make_scan(view, quality, seed, 128, 64);
+GalleryScan bench_scan(View view, double quality, int seed, int feature_rows, int feature_cols) {
+  GalleryScan s = make_scan(view, quality, seed, 128, 64);
   s.features = cv::Mat(feature_rows, feature_cols, CV_32F);
   cv::randu(s.features, 0, 1);
   return s;
@@ -70,12 +70,12 @@ void BM_PutScanReplace(benchmark::State& state) {
   o.store_images = state.range(1) != 0;
   Gallery g((dir.path / "g.db").string(), o);
   const auto user = g.add_user();
-  std::vector<PartialScan> scans;
+  std::vector<GalleryScan> scans;
   for (int i = 0; i < 16; ++i) scans.push_back(bench_scan(View::F, 0, i, 1, 512));
   double quality = 0;
   int i = 0;
   for (auto _ : state) {
-    PartialScan& s = scans[static_cast<size_t>(i++ % 16)];
+    GalleryScan& s = scans[static_cast<size_t>(i++ % 16)];
     s.quality = quality += 1;  // always better: a replacing write
     benchmark::DoNotOptimize(g.put_scan(user, s));
   }
@@ -90,7 +90,7 @@ void BM_PutScanKept(benchmark::State& state) {
   o.create = true;
   Gallery g((dir.path / "g.db").string(), o);
   const auto user = g.enrol(bench_scan(View::F, 1.0, 1, 1, 512));
-  const PartialScan worse = bench_scan(View::F, 0.5, 2, 1, 512);
+  const GalleryScan worse = bench_scan(View::F, 0.5, 2, 1, 512);
   for (auto _ : state) benchmark::DoNotOptimize(g.put_scan(user, worse));
 }
 BENCHMARK(BM_PutScanKept)->Unit(benchmark::kMillisecond);

@@ -22,8 +22,8 @@ using store::testing::make_scan;
 
 const GalleryTime kT0 = from_unix_ms(1795179600000LL);  // 2026-11-20T13:00:00Z, before these tests were written
 
-PartialScan scan_at(View view, double quality, int seed, int minutes) {
-  PartialScan s = make_scan(view, quality, seed);
+GalleryScan scan_at(View view, double quality, int seed, int minutes) {
+  GalleryScan s = make_scan(view, quality, seed);
   s.time = kT0 + std::chrono::minutes(minutes);
   return s;
 }
@@ -102,7 +102,7 @@ TEST(GalleryCli, ExportWritesTheStoredPngsAndAJson) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "exported user 1 to " + out.string() + ": 4 scans (4 images, 4 masks")) << r.out;
   const cv::Mat image = cv::imread((out / "SL-image.png").string(), cv::IMREAD_UNCHANGED);
-  const PartialScan original = make_scan(View::SL, 0.75, 3);
+  const GalleryScan original = make_scan(View::SL, 0.75, 3);
   ASSERT_EQ(image.size(), original.image.size());
   EXPECT_EQ(cv::norm(image, original.image, cv::NORM_INF), 0.0);  // lossless
   EXPECT_TRUE(fs::exists(out / "B-mask.png"));

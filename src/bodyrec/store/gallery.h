@@ -64,11 +64,11 @@ class Gallery {
   // name/version (its features are useless to the current matcher); otherwise kept unchanged. Also
   // moves the user's last_seen forward to scan.time. REQUIRES: the user exists (else InputError),
   // scan.features non-empty and quality finite (else ProcessingError).
-  PutResult put_scan(UserId user, const PartialScan& scan);
+  PutResult put_scan(UserId user, const GalleryScan& scan);
   // Appends an event (id assigned, returned); moves the user's last_seen forward to event.time.
   int64_t log_event(const Event& event);
   // add_user + put_scan + an `enrolled` event, in one transaction.
-  UserId enrol(const PartialScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
+  UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
                const std::string& source = "");
   void set_label(UserId user, const std::string& label);
 

@@ -9,8 +9,8 @@ namespace bodyrec::store::testing {
 
 // A `rows` x `cols` random BGR image (seeded: same seed, same pixels) with an elliptic body mask,
 // 1 x 64 float features filled with `seed`, the descriptor "test" v1.
-inline PartialScan make_scan(View view, double quality, int seed, int rows = 64, int cols = 32) {
-  PartialScan scan;
+inline GalleryScan make_scan(View view, double quality, int seed, int rows = 64, int cols = 32) {
+  GalleryScan scan;
   scan.view = view;
   scan.image.create(rows, cols, CV_8UC3);
   cv::RNG rng(static_cast<uint64_t>(seed) * 7919 + 1);

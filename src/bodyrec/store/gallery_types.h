@@ -21,7 +21,7 @@ using GalleryTime = GalleryClock::time_point;
 using UserId = int64_t;
 
 // One partial scan as the caller hands it to the gallery.
-struct PartialScan {
+struct GalleryScan {
   View view = View::F;
   cv::Mat image;     // background-removed person, 8-bit BGR or grey; may be empty (features only)
   cv::Mat mask;      // 8-bit foreground mask (0 / non-zero) of the same size; may be empty

@@ -54,7 +54,7 @@ void Gallery::set_label(UserId user, const std::string& label) {
   });
 }
 
-PutResult Gallery::put_scan(UserId user, const PartialScan& scan) {
+PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
   const std::string what = path_ + ": user " + std::to_string(user) + " view " + view_name(scan.view);
   if (scan.features.empty()) throw ProcessingError(what + ": scan has no features");
   if (!std::isfinite(scan.quality)) throw ProcessingError(what + ": scan quality is not finite");
@@ -124,7 +124,7 @@ int64_t Gallery::log_event(const Event& event) {
   return id;
 }
 
-UserId Gallery::enrol(const PartialScan& scan, const std::string& label, std::optional<int64_t> track,
+UserId Gallery::enrol(const GalleryScan& scan, const std::string& label, std::optional<int64_t> track,
                       const std::string& source) {
   UserId id = 0;
   transaction([&] {

@@ -30,7 +30,7 @@ struct Patterns {
   std::string image, features;
 };
 
-Patterns patterns_of(const PartialScan& scan) {
+Patterns patterns_of(const GalleryScan& scan) {
   std::vector<unsigned char> png;
   cv::imencode(".png", scan.image, png);
   const auto blob = store::encode_features(scan.features);
@@ -38,8 +38,8 @@ Patterns patterns_of(const PartialScan& scan) {
           std::string(blob.begin() + 16, blob.begin() + 40)};
 }
 
-PartialScan distinct_scan(int seed) {
-  PartialScan scan = make_scan(View::F, 0.5, seed, 96, 48);
+GalleryScan distinct_scan(int seed) {
+  GalleryScan scan = make_scan(View::F, 0.5, seed, 96, 48);
   cv::RNG rng(static_cast<uint64_t>(seed) + 99);
   rng.fill(scan.features, cv::RNG::UNIFORM, 0.0, 1.0);
   return scan;
@@ -49,7 +49,7 @@ TEST(GalleryPrivacy, ForgetLeavesNoImageOrFeatureBytesInTheFiles) {
   TempDir dir;
   const std::string path = (dir / "g.db").string();
   Gallery g(path, [] { GalleryOptions o; o.create = true; return o; }());
-  const PartialScan secret = distinct_scan(1), other = distinct_scan(2);
+  const GalleryScan secret = distinct_scan(1), other = distinct_scan(2);
   const Patterns p = patterns_of(secret), q = patterns_of(other);
   const UserId u = g.enrol(secret);
   g.enrol(other);
@@ -71,7 +71,7 @@ TEST(GalleryPrivacy, ReplacedAndPurgedScansLeaveNoBytes) {
   TempDir dir;
   const std::string path = (dir / "g.db").string();
   Gallery g(path, [] { GalleryOptions o; o.create = true; return o; }());
-  PartialScan first = distinct_scan(3), better = distinct_scan(4);
+  GalleryScan first = distinct_scan(3), better = distinct_scan(4);
   better.quality = 0.9;
   const Patterns p = patterns_of(first), b = patterns_of(better);
   const UserId u = g.enrol(first);
