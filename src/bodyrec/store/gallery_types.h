@@ -29,7 +29,7 @@ struct GalleryScan {
   std::string descriptor;      // which matcher made `features`, e.g. "kaze" or "stripes-xqda"
   int descriptor_version = 1;  // bump when the same matcher's features change meaning
   // Higher is better; only compared between scans of one user and view. Callers compute it from how
-  // sharp and how complete the body image is; scan_quality() in scan_quality.h is the default.
+  // sharp, complete and large the body image is (PartialScan::quality in reid/partial_scan.h).
   double quality = 0;
   GalleryTime time = GalleryClock::now();
 };
