@@ -138,6 +138,10 @@ uint32_t as_bits(const unsigned char* p) {
 PcdCloud read_pcd(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open");
+  return read_pcd(in, file);
+}
+
+PcdCloud read_pcd(std::istream& in, const std::string& file) {
   const Header h = read_header(in, file);
   const Field& fx = field(h, file, {"x"});
   const Field& fy = field(h, file, {"y"});

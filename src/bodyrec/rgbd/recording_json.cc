@@ -118,8 +118,12 @@ json read_json_file(const std::string& file) {
   if (!in) throw InputError(file + ": cannot open");
   std::stringstream s;
   s << in.rdbuf();
+  return parse_json_text(s.str(), file);
+}
+
+json parse_json_text(const std::string& text, const std::string& file) {
   try {
-    return json::parse(s.str());
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(file + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
   }
