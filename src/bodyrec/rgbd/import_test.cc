@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <liblzf/lzf.h>
@@ -216,6 +217,20 @@ TEST(Pcd, ImportWritesRegisteredColourAndDepthInMillimetres) {
   EXPECT_EQ(f.depth.at<uint16_t>(2, 4), 0);
   EXPECT_EQ(f.depth.at<uint16_t>(3, 10), 1630);
   EXPECT_EQ(f.color.at<cv::Vec3b>(0, 0), cv::Vec3b(50, 100, 200));
+}
+
+// Fuzz finding (fuzz/regressions/pcd): an integer colour beyond 32 bits was cast to long long (undefined
+// behaviour, caught by UBSan); now a typed error naming the point and field.
+TEST(Pcd, FuzzAsciiPackedColourOutOfRangeIsAnInputError) {
+  std::istringstream in(
+      "FIELDS x y z rgba\nSIZE 4 4 4 4\nTYPE F F F U\nWIDTH 1\nHEIGHT 2\nPOINTS 2\nDATA ascii\n0 0 1 1e25\n0 0 1 0\n");
+  EXPECT_EQ(input_error([&] { read_pcd(in, "c.pcd"); }),
+            "c.pcd: ascii point 0: field rgba: not a packed 32-bit colour: \"1e25\"");
+  std::istringstream signed_colour(
+      "FIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F I\nWIDTH 1\nHEIGHT 2\nPOINTS 2\nDATA ascii\n0 0 1 -1\n0 0 1 255\n");
+  const PcdCloud c = read_pcd(signed_colour, "s.pcd");
+  EXPECT_EQ(c.color.at<cv::Vec3b>(0, 0), cv::Vec3b(255, 255, 255));
+  EXPECT_EQ(c.color.at<cv::Vec3b>(1, 0), cv::Vec3b(255, 0, 0));
 }
 
 }  // namespace

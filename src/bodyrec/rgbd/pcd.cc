@@ -195,6 +195,10 @@ PcdCloud read_pcd(std::istream& in, const std::string& file) {
             const float fv = static_cast<float>(d);
             std::memcpy(&bits, &fv, 4);
           } else if (!is_nan) {
+            // A packed colour: 32 bits, written unsigned (U) or signed (I). Out of range would overflow.
+            if (!(d >= -2147483648.0 && d <= 4294967295.0))
+              fail(file, "ascii point " + std::to_string(i) + ": field " + f.name + ": not a packed 32-bit colour: \"" +
+                             t + "\"");
             bits = static_cast<uint32_t>(static_cast<long long>(d));
           }
           set_color(i, bits);
