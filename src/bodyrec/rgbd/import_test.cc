@@ -233,5 +233,24 @@ TEST(Pcd, FuzzAsciiPackedColourOutOfRangeIsAnInputError) {
   EXPECT_EQ(c.color.at<cv::Vec3b>(1, 0), cv::Vec3b(255, 0, 0));
 }
 
+// Fuzz finding (fuzz/regressions/pcd: huge_*, too_many_points): a header promising billions of points or a
+// COUNT of 2^31 made read_pcd allocate gigabytes (out of memory) before it looked at the data. Now the
+// header is bounded and the data length is checked against it before any allocation.
+TEST(Pcd, FuzzHeadersPromisingMoreThanTheDataAreRefusedBeforeAllocating) {
+  const auto error_of = [](const std::string& header, const std::string& data) {
+    std::istringstream in("FIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\n" + header + data, std::ios::binary);
+    return input_error([&] { read_pcd(in, "h.pcd"); });
+  };
+  const std::string big = "WIDTH 8000\nHEIGHT 8000\nPOINTS 64000000\n";
+  EXPECT_EQ(error_of("COUNT 1 1 1 2147483647\nWIDTH 2\nHEIGHT 2\nPOINTS 4\nDATA binary\n", "0000"),
+            "h.pcd: header: field rgb: bad SIZE or COUNT");
+  EXPECT_EQ(error_of("WIDTH 50000\nHEIGHT 40000\nPOINTS 2000000000\nDATA binary\n", "0000"),
+            "h.pcd: header: 2000000000 points, more than bodyrec reads (67108864)");
+  EXPECT_EQ(error_of(big + "DATA binary\n", "0000"), "h.pcd: binary data truncated: 4 of 1024000000 bytes");
+  EXPECT_EQ(error_of(big + "DATA binary_compressed\n", std::string("\x10\0\0\0\0\xa0\x41\x0f", 8) + "0123456789abcdef"),
+            "h.pcd: binary_compressed: data truncated: 24 bytes cannot hold 64000000 points");
+  EXPECT_EQ(error_of(big + "DATA ascii\n", "1 2 3 4\n"), "h.pcd: ascii data truncated: 8 bytes cannot hold 64000000 points");
+}
+
 }  // namespace
 }  // namespace bodyrec
