@@ -11,6 +11,10 @@
 #include "test_support.h"
 
 namespace bodyrec::fuzz {
+
+// Test names and failure messages show the target's name, not its bytes.
+void PrintTo(const NamedTarget& target, std::ostream* os) { *os << target.name; }
+
 namespace {
 
 namespace fs = std::filesystem;
