@@ -6,7 +6,7 @@ VTEST    ?= /usr/share/doc/opencv-doc/examples/data/vtest.avi
 CMAKE_FLAGS ?=
 BIN      := $(BUILD)/bin/bodyrec
 
-.PHONY: all deps configure build run test test-asan test-data bench clean
+.PHONY: all deps configure build run test test-asan test-data bench clean fuzz
 
 all: build
 
@@ -49,8 +49,19 @@ test-asan: deps
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS)
 
+# libFuzzer + ASan + UBSan on every parser of outside input (clang; own build folder): each target runs
+# FUZZ_SECONDS; crashes land in build-fuzz/crashes/<target>/ (see scripts/fuzz and docs/reliability.md).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 600
+FUZZ_TARGETS ?=
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYREC_WERROR=ON \
+	    -DBODYREC_FUZZ=ON $(CMAKE_FLAGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS)
+	scripts/fuzz --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 bench: build
 	@for b in $(BUILD)/bin/*_bench; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD)
+	rm -rf $(BUILD) $(ASAN_BUILD) build-fuzz

@@ -33,6 +33,10 @@ int parse_index(const std::string& text, const std::string& where, const char* f
 
 std::vector<ObsmatRow> read_obsmat(const std::string& path) {
   std::ifstream in = open_text(path);
+  return read_obsmat(in, path);
+}
+
+std::vector<ObsmatRow> read_obsmat(std::istream& in, const std::string& path) {
   static const char* const kFields[] = {"frame", "ped", "pos_x", "pos_z", "pos_y", "v_x", "v_z", "v_y"};
   std::vector<ObsmatRow> rows;
   std::set<std::pair<int, int>> seen;
@@ -68,6 +72,10 @@ std::vector<ObsmatRow> read_obsmat(const std::string& path) {
 
 std::vector<std::vector<int>> read_groups(const std::string& path) {
   std::ifstream in = open_text(path);
+  return read_groups(in, path);
+}
+
+std::vector<std::vector<int>> read_groups(std::istream& in, const std::string& path) {
   std::vector<std::vector<int>> groups;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct ObsmatRow {
 // integers >= 0; every field finite. Throws InputError naming the file, the line and the field at fault,
 // also when the file cannot be opened, holds no rows or repeats a (frame, person) pair.
 std::vector<ObsmatRow> read_obsmat(const std::string& path);
+// The same from a stream; `name` names the source in messages.
+std::vector<ObsmatRow> read_obsmat(std::istream& in, const std::string& name);
 
 // Reads groups.txt: one group per line, integer person ids separated by blanks; blank lines skipped;
 // lines with one id are singletons and are kept. An id repeated on a line counts once, and an id may be
@@ -29,6 +32,8 @@ std::vector<ObsmatRow> read_obsmat(const std::string& path);
 // "walks together" sets, not a partition. Throws InputError naming the file and line for a non-integer
 // or negative id.
 std::vector<std::vector<int>> read_groups(const std::string& path);
+// The same from a stream; `name` names the source in messages.
+std::vector<std::vector<int>> read_groups(std::istream& in, const std::string& name);
 
 // A scene: trajectories with times in seconds and the labelled groups.
 struct WalkingScene {

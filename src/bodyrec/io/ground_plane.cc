@@ -64,6 +64,10 @@ std::unique_ptr<GroundPlane> homography_ground_plane(const cv::Matx33d& h, const
 std::unique_ptr<GroundPlane> read_homography(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the homography file");
+  return read_homography(in, path);
+}
+
+std::unique_ptr<GroundPlane> read_homography(std::istream& in, const std::string& path) {
   std::vector<double> values;
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {
@@ -87,8 +91,7 @@ std::unique_ptr<GroundPlane> read_homography(const std::string& path) {
   return homography_ground_plane(h, path);
 }
 
-std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path) {
-  const pugi::xml_document doc = load_xml_file(path);
+static std::unique_ptr<GroundPlane> tsai_from_document(const pugi::xml_document& doc, const std::string& path) {
   const pugi::xml_node camera = doc.child("Camera");
   if (!camera) throw InputError(path + ": no <Camera> element (expected a PETS/Tsai calibration)");
   auto node = [&](const char* name) {
@@ -123,6 +126,14 @@ std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path) {
                                      r(2, 1), t[2]);
   check_invertible(ground_to_sensor, path);
   return std::make_unique<TsaiPlane>(kappa1, cx, cy, sx, dpx, dy, ground_to_sensor, path);
+}
+
+std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path) {
+  return tsai_from_document(load_xml_file(path), path);
+}
+
+std::unique_ptr<GroundPlane> parse_tsai_calibration(const std::string& text, const std::string& name) {
+  return tsai_from_document(parse_xml_text(text, name), name);
 }
 
 }  // namespace bodyrec

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <iosfwd>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -24,9 +25,13 @@ class GroundPlane {
 
 // Throws InputError naming the file and the line/field at fault (not nine numbers, not finite, singular).
 std::unique_ptr<GroundPlane> read_homography(const std::string& path);
+// The same from a stream; `name` names the source in messages.
+std::unique_ptr<GroundPlane> read_homography(std::istream& in, const std::string& name);
 
 // Throws InputError naming the file and the element/attribute at fault.
 std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path);
+// The same from XML text; `name` names the source in messages.
+std::unique_ptr<GroundPlane> parse_tsai_calibration(const std::string& text, const std::string& name);
 
 // A ground plane from a homography matrix (tests, tools).
 std::unique_ptr<GroundPlane> homography_ground_plane(const cv::Matx33d& image_to_ground, const std::string& name);

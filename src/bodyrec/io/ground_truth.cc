@@ -45,8 +45,7 @@ std::map<int, std::vector<LabelledBox>> GroundTruth::by_frame() const {
   return frames;
 }
 
-GroundTruth read_cvml(const std::string& path) {
-  const pugi::xml_document doc = load_xml_file(path);
+static GroundTruth cvml_from_document(const pugi::xml_document& doc, const std::string& path) {
   const pugi::xml_node root = doc.child("dataset");
   if (!root) throw InputError(path + ": not CVML ground truth (no <dataset> root element)");
   GroundTruth gt;
@@ -73,9 +72,19 @@ GroundTruth read_cvml(const std::string& path) {
   return gt;
 }
 
+GroundTruth read_cvml(const std::string& path) { return cvml_from_document(load_xml_file(path), path); }
+
+GroundTruth parse_cvml(const std::string& text, const std::string& name) {
+  return cvml_from_document(parse_xml_text(text, name), name);
+}
+
 GroundTruth read_mot(const std::string& path, bool is_ground_truth) {
   std::ifstream in(path);
   if (!in) throw InputError("cannot read " + path);
+  return read_mot(in, path, is_ground_truth);
+}
+
+GroundTruth read_mot(std::istream& in, const std::string& path, bool is_ground_truth) {
   GroundTruth gt;
   std::string line;
   int line_number = 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -30,12 +31,16 @@ struct GroundTruth {
 // Throws InputError naming the file, frame and field for malformed XML, missing or non-numeric
 // attributes, negative sizes, or a root that is not <dataset>.
 GroundTruth read_cvml(const std::string& path);
+// The same from XML text; `name` names the source in messages.
+GroundTruth parse_cvml(const std::string& text, const std::string& name);
 
 // MOTChallenge text: frame,id,x,y,w,h[,conf[,class[,visibility]]] (gt.txt and results alike; extra
 // columns ignored). A row with conf == 0 or a class other than 1 (pedestrian), when those columns are
 // present and the file is a gt file (`is_ground_truth`), is kept with ignore = true.
 // Throws InputError naming the file and line for too few columns, non-numbers, frame < 1 or sizes < 0.
 GroundTruth read_mot(const std::string& path, bool is_ground_truth);
+// The same from a stream; `name` names the source in messages.
+GroundTruth read_mot(std::istream& in, const std::string& name, bool is_ground_truth);
 
 // Chooses by extension: .xml -> CVML, otherwise MOTChallenge text (as ground truth).
 GroundTruth read_ground_truth(const std::string& path);

@@ -13,8 +13,9 @@ namespace fs = std::filesystem;
 
 namespace bodyrec {
 
-ImglabDataset read_imglab(const std::string& path) {
-  const pugi::xml_document doc = load_xml_file(path);
+namespace {
+
+ImglabDataset imglab_from_document(const pugi::xml_document& doc, const std::string& path) {
   const pugi::xml_node root = doc.child("dataset");
   if (!root) throw InputError(path + ": not an imglab dataset (no <dataset> root element)");
   ImglabDataset dataset;
@@ -50,6 +51,14 @@ ImglabDataset read_imglab(const std::string& path) {
     ++image_index;
   }
   return dataset;
+}
+
+}  // namespace
+
+ImglabDataset read_imglab(const std::string& path) { return imglab_from_document(load_xml_file(path), path); }
+
+ImglabDataset parse_imglab(const std::string& text, const std::string& name) {
+  return imglab_from_document(parse_xml_text(text, name), name);
 }
 
 void write_imglab(const ImglabDataset& dataset, const std::string& path) {

@@ -38,6 +38,8 @@ struct ImglabDataset {
 // missing root, an <image> without 'file', a <box> without top/left/width/height, negative sizes, or a
 // <part> without name/x/y.
 ImglabDataset read_imglab(const std::string& path);
+// The same from XML text; `name` names the source in messages.
+ImglabDataset parse_imglab(const std::string& text, const std::string& name);
 
 // Writes an imglab XML file (UTF-8). Throws ProcessingError when the file cannot be written.
 void write_imglab(const ImglabDataset& dataset, const std::string& path);

@@ -12,6 +12,10 @@ namespace bodyrec {
 std::vector<RoleLabel> read_roles_csv(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the roles CSV");
+  return read_roles_csv(in, path);
+}
+
+std::vector<RoleLabel> read_roles_csv(std::istream& in, const std::string& path) {
   std::vector<RoleLabel> labels;
   std::string line;
   static const char* const kFields[] = {"frame", "x", "y", "w", "h", "role"};

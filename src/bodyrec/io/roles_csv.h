@@ -2,6 +2,7 @@
 // leader | member | non-member). A first line starting with "frame" is a header; '#' lines are comments.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -19,5 +20,7 @@ struct RoleLabel {
 // Throws InputError "<file>:<line>: ..." naming the field for a missing file, a wrong field count, a
 // non-numeric or negative value, an empty box or an unknown role.
 std::vector<RoleLabel> read_roles_csv(const std::string& path);
+// The same from a stream; `name` names the source in messages.
+std::vector<RoleLabel> read_roles_csv(std::istream& in, const std::string& name);
 
 }  // namespace bodyrec

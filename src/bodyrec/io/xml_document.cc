@@ -26,7 +26,10 @@ pugi::xml_document load_xml_file(const std::string& path) {
   if (!in) throw InputError("cannot read " + path);
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return parse_xml_text(buffer.str(), path);
+}
+
+pugi::xml_document parse_xml_text(const std::string& text, const std::string& path) {
   if (text.empty()) throw InputError(path + ": empty file, expected XML");
   pugi::xml_document doc;
   const pugi::xml_parse_result result = doc.load_buffer(text.data(), text.size());

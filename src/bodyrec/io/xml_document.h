@@ -12,6 +12,9 @@ namespace bodyrec {
 // missing, unreadable, empty or not well-formed XML.
 pugi::xml_document load_xml_file(const std::string& path);
 
+// Parses XML text read from `name` (a file name for messages); the same errors as load_xml_file.
+pugi::xml_document parse_xml_text(const std::string& text, const std::string& name);
+
 // Required numeric attribute. Throws InputError "<file>: <where>: missing attribute 'name'" or
 // "... attribute 'name' is not a number: '...'".
 double required_number(const pugi::xml_node& node, const char* name, const std::string& where);

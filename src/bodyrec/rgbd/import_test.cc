@@ -2,6 +2,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <liblzf/lzf.h>
@@ -216,6 +217,39 @@ TEST(Pcd, ImportWritesRegisteredColourAndDepthInMillimetres) {
   EXPECT_EQ(f.depth.at<uint16_t>(2, 4), 0);
   EXPECT_EQ(f.depth.at<uint16_t>(3, 10), 1630);
   EXPECT_EQ(f.color.at<cv::Vec3b>(0, 0), cv::Vec3b(50, 100, 200));
+}
+
+// Fuzz finding (fuzz/regressions/pcd): an integer colour beyond 32 bits was cast to long long (undefined
+// behaviour, caught by UBSan); now a typed error naming the point and field.
+TEST(Pcd, FuzzAsciiPackedColourOutOfRangeIsAnInputError) {
+  std::istringstream in(
+      "FIELDS x y z rgba\nSIZE 4 4 4 4\nTYPE F F F U\nWIDTH 1\nHEIGHT 2\nPOINTS 2\nDATA ascii\n0 0 1 1e25\n0 0 1 0\n");
+  EXPECT_EQ(input_error([&] { read_pcd(in, "c.pcd"); }),
+            "c.pcd: ascii point 0: field rgba: not a packed 32-bit colour: \"1e25\"");
+  std::istringstream signed_colour(
+      "FIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F I\nWIDTH 1\nHEIGHT 2\nPOINTS 2\nDATA ascii\n0 0 1 -1\n0 0 1 255\n");
+  const PcdCloud c = read_pcd(signed_colour, "s.pcd");
+  EXPECT_EQ(c.color.at<cv::Vec3b>(0, 0), cv::Vec3b(255, 255, 255));
+  EXPECT_EQ(c.color.at<cv::Vec3b>(1, 0), cv::Vec3b(255, 0, 0));
+}
+
+// Fuzz finding (fuzz/regressions/pcd: huge_*, too_many_points): a header promising billions of points or a
+// COUNT of 2^31 made read_pcd allocate gigabytes (out of memory) before it looked at the data. Now the
+// header is bounded and the data length is checked against it before any allocation.
+TEST(Pcd, FuzzHeadersPromisingMoreThanTheDataAreRefusedBeforeAllocating) {
+  const auto error_of = [](const std::string& header, const std::string& data) {
+    std::istringstream in("FIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\n" + header + data, std::ios::binary);
+    return input_error([&] { read_pcd(in, "h.pcd"); });
+  };
+  const std::string big = "WIDTH 8000\nHEIGHT 8000\nPOINTS 64000000\n";
+  EXPECT_EQ(error_of("COUNT 1 1 1 2147483647\nWIDTH 2\nHEIGHT 2\nPOINTS 4\nDATA binary\n", "0000"),
+            "h.pcd: header: field rgb: bad SIZE or COUNT");
+  EXPECT_EQ(error_of("WIDTH 50000\nHEIGHT 40000\nPOINTS 2000000000\nDATA binary\n", "0000"),
+            "h.pcd: header: 2000000000 points, more than bodyrec reads (67108864)");
+  EXPECT_EQ(error_of(big + "DATA binary\n", "0000"), "h.pcd: binary data truncated: 4 of 1024000000 bytes");
+  EXPECT_EQ(error_of(big + "DATA binary_compressed\n", std::string("\x10\0\0\0\0\xa0\x41\x0f", 8) + "0123456789abcdef"),
+            "h.pcd: binary_compressed: data truncated: 24 bytes cannot hold 64000000 points");
+  EXPECT_EQ(error_of(big + "DATA ascii\n", "1 2 3 4\n"), "h.pcd: ascii data truncated: 8 bytes cannot hold 64000000 points");
 }
 
 }  // namespace

@@ -14,9 +14,7 @@ namespace {
 // Reads the file line by line, splitting on whitespace (so '\r' of CRLF files is just whitespace).
 class Lines {
  public:
-  explicit Lines(const std::string& file) : file_(file), in_(file, std::ios::binary) {
-    if (!in_) throw InputError(file + ": cannot open");
-  }
+  Lines(std::istream& in, const std::string& file) : file_(file), in_(in) {}
   // The next line's tokens; expects exactly `n` of them.
   std::vector<std::string> next(size_t n, const char* what) {
     std::string line;
@@ -66,7 +64,7 @@ class Lines {
 
  private:
   std::string file_;
-  std::ifstream in_;
+  std::istream& in_;
   int line_ = 0;
 };
 
@@ -91,7 +89,13 @@ bool fit_line(const std::vector<std::array<double, 4>>& rows, bool with_z, cv::V
 }  // namespace
 
 NtuSkeleton read_ntu_skeleton(const std::string& file) {
-  Lines lines(file);
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file + ": cannot open");
+  return read_ntu_skeleton(in, file);
+}
+
+NtuSkeleton read_ntu_skeleton(std::istream& in, const std::string& file) {
+  Lines lines(in, file);
   NtuSkeleton s;
   const auto frames = lines.integer(lines.next(1, "frame count")[0], "frame count", 0, 10000000);
   for (long long f = 0; f < frames; ++f) {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct NtuSkeleton {
 // Parses a whole file. InputError naming the file, line and field on any deviation from the grammar
 // (counts, 25 joints, 12 values per joint line, 10 per body line, numbers, end of file).
 NtuSkeleton read_ntu_skeleton(const std::string& file);
+// The same from a stream; `name` names the source in messages.
+NtuSkeleton read_ntu_skeleton(std::istream& in, const std::string& name);
 
 // Fits depth intrinsics (u = cx + fx X/Z, v = cy - fy Y/Z) and colour intrinsics plus a depth-to-colour
 // translation from the joints' own projections; Kinect v2 defaults when fewer than 20 joints. `rms_px`

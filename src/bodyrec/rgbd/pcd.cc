@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -32,6 +33,24 @@ struct Header {
 };
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) { throw InputError(file + ": " + what); }
+
+// Sanity bounds, far above any sensor (a Kinect v2 colour frame is 2 megapixels; PCL descriptors have
+// COUNT up to a few hundred): a corrupt header must not make us allocate gigabytes before reading data.
+constexpr long long kMaxPoints = 8192LL * 8192;
+constexpr int kMaxCount = 65536;
+constexpr size_t kMaxFields = 1024;
+
+// Bytes between the read position and the end of a seekable stream; nullopt when it cannot be told.
+std::optional<size_t> bytes_left(std::istream& in) {
+  const std::streampos here = in.tellg();
+  if (here < 0) return std::nullopt;
+  in.seekg(0, std::ios::end);
+  const std::streampos end = in.tellg();
+  in.clear();
+  in.seekg(here);
+  if (end < here) return std::nullopt;
+  return static_cast<size_t>(end - here);
+}
 
 int to_int(const std::string& file, int line, const std::string& t) {
   const long long v = parse_integer(t).value_or(-1);
@@ -83,6 +102,7 @@ Header read_header(std::istream& in, const std::string& file) {
   }
   if (h.data.empty()) fail(file, "no DATA line (not a PCD file, or truncated header)");
   if (h.fields.empty()) fail(file, "header: FIELDS missing");
+  if (h.fields.size() > kMaxFields) fail(file, "header: more than " + std::to_string(kMaxFields) + " FIELDS");
   if (sizes.size() != h.fields.size() || types.size() != h.fields.size())
     fail(file, "header: SIZE and TYPE need one value per field (" + std::to_string(h.fields.size()) + ")");
   if (!counts.empty() && counts.size() != h.fields.size()) fail(file, "header: COUNT needs one value per field");
@@ -93,7 +113,7 @@ Header read_header(std::istream& in, const std::string& file) {
       fail(file, "header: TYPE of field " + f.name + " must be F, U or I");
     f.type = types[i][0];
     f.count = counts.empty() ? 1 : to_int(file, 0, counts[i]);
-    if (!(f.size == 1 || f.size == 2 || f.size == 4 || f.size == 8) || f.count < 1)
+    if (!(f.size == 1 || f.size == 2 || f.size == 4 || f.size == 8) || f.count < 1 || f.count > kMaxCount)
       fail(file, "header: field " + f.name + ": bad SIZE or COUNT");
     f.offset = h.point_bytes;
     h.point_bytes += static_cast<size_t>(f.size) * static_cast<size_t>(f.count);
@@ -102,6 +122,8 @@ Header read_header(std::istream& in, const std::string& file) {
   if (h.points != static_cast<long long>(h.width) * h.height)
     fail(file, "header: POINTS " + std::to_string(h.points) + " is not WIDTH x HEIGHT");
   if (h.height == 1) fail(file, "header: HEIGHT 1: the cloud is not organised (no pixel grid to make images of)");
+  if (h.points > kMaxPoints)
+    fail(file, "header: " + std::to_string(h.points) + " points, more than bodyrec reads (" + std::to_string(kMaxPoints) + ")");
   return h;
 }
 
@@ -138,6 +160,10 @@ uint32_t as_bits(const unsigned char* p) {
 PcdCloud read_pcd(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) fail(file, "cannot open");
+  return read_pcd(in, file);
+}
+
+PcdCloud read_pcd(std::istream& in, const std::string& file) {
   const Header h = read_header(in, file);
   const Field& fx = field(h, file, {"x"});
   const Field& fy = field(h, file, {"y"});
@@ -147,6 +173,21 @@ PcdCloud read_pcd(const std::string& file) {
     if (f->type != 'F') fail(file, "header: field " + f->name + " must be TYPE F");
   if (fc.size != 4) fail(file, "header: field " + fc.name + " must be SIZE 4");
   const size_t n = static_cast<size_t>(h.points);
+  // Refuse data shorter than the header promises before allocating for it: points * bytes per point for
+  // binary; the size words and the smallest LZF block that could hold the points for binary_compressed
+  // (LZF expands at most 88-fold); for ascii, one character per value, checked only for large clouds so
+  // that a short small file still gets the message naming its first bad point.
+  size_t values = 0;
+  for (const auto& f : h.fields) values += static_cast<size_t>(f.count);
+  if (const auto left = bytes_left(in)) {
+    if (h.data == "binary" && *left < n * h.point_bytes)
+      fail(file, "binary data truncated: " + std::to_string(*left) + " of " + std::to_string(n * h.point_bytes) + " bytes");
+    if (h.data == "binary_compressed" && *left < 8 + n * h.point_bytes / 100)
+      fail(file, "binary_compressed: data truncated: " + std::to_string(*left) + " bytes cannot hold " +
+                     std::to_string(n) + " points");
+    if (h.data == "ascii" && n >= (1u << 16) && *left < n * values)
+      fail(file, "ascii data truncated: " + std::to_string(*left) + " bytes cannot hold " + std::to_string(n) + " points");
+  }
   PcdCloud c;
   c.width = h.width;
   c.height = h.height;
@@ -166,8 +207,6 @@ PcdCloud read_pcd(const std::string& file) {
       std::istringstream s(line);
       std::vector<std::string> v;
       for (std::string t; s >> t;) v.push_back(t);
-      size_t values = 0;
-      for (const auto& f : h.fields) values += static_cast<size_t>(f.count);
       if (v.size() != values)
         fail(file, "ascii point " + std::to_string(i) + ": " + std::to_string(v.size()) + " values, expected " +
                        std::to_string(values));
@@ -191,6 +230,10 @@ PcdCloud read_pcd(const std::string& file) {
             const float fv = static_cast<float>(d);
             std::memcpy(&bits, &fv, 4);
           } else if (!is_nan) {
+            // A packed colour: 32 bits, written unsigned (U) or signed (I). Out of range would overflow.
+            if (!(d >= -2147483648.0 && d <= 4294967295.0))
+              fail(file, "ascii point " + std::to_string(i) + ": field " + f.name + ": not a packed 32-bit colour: \"" +
+                             t + "\"");
             bits = static_cast<uint32_t>(static_cast<long long>(d));
           }
           set_color(i, bits);
@@ -224,6 +267,9 @@ PcdCloud read_pcd(const std::string& file) {
   if (sizes[1] != expected)
     fail(file, "binary_compressed: uncompressed size " + std::to_string(sizes[1]) + " disagrees with the header (" +
                    std::to_string(expected) + " bytes)");
+  if (const auto left = bytes_left(in); left && *left < sizes[0])
+    fail(file, "binary_compressed: data truncated: " + std::to_string(*left) + " of " + std::to_string(sizes[0]) +
+                   " compressed bytes");
   std::vector<unsigned char> packed(sizes[0]);
   in.read(reinterpret_cast<char*>(packed.data()), static_cast<std::streamsize>(sizes[0]));
   if (static_cast<size_t>(in.gcount()) != sizes[0])

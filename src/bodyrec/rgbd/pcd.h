@@ -3,6 +3,7 @@
 // decompression; decompressed with Debian's liblzf). Import turns one cloud into a one-frame recording.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 
 #include "bodyrec/rgbd/recording.h"
@@ -18,6 +19,8 @@ struct PcdCloud {
 // Reads a PCD file. InputError naming the file and the header line or data field at fault (unknown
 // DATA kind, missing x/y/z/rgb, sizes that disagree, truncated or corrupt data, unorganised cloud).
 PcdCloud read_pcd(const std::string& file);
+// The same from a (binary) stream; `name` names the source in messages.
+PcdCloud read_pcd(std::istream& in, const std::string& name);
 
 // Fits u = cx + fx x/z and v = cy + fy y/z over the valid points (an organised cloud keeps pixel order).
 // InputError when fewer than 100 valid points.

@@ -99,6 +99,8 @@ FrameTruth truth_from_json(const nlohmann::json& j, const std::string& file);
 nlohmann::json to_json(const FrameTruth& truth);
 // Parses a JSON file; InputError naming the file when it is missing or not JSON.
 nlohmann::json read_json_file(const std::string& file);
+// Parses JSON text; InputError naming `name` when it is not JSON.
+nlohmann::json parse_json_text(const std::string& text, const std::string& name);
 
 // Checks one frame's images against the meta (types, sizes, body index values) and its bodies (slots,
 // unique, quaternions). Throws InputError naming `where` and the field.

@@ -118,10 +118,17 @@ json read_json_file(const std::string& file) {
   if (!in) throw InputError(file + ": cannot open");
   std::stringstream s;
   s << in.rdbuf();
+  return parse_json_text(s.str(), file);
+}
+
+json parse_json_text(const std::string& text, const std::string& file) {
   try {
-    return json::parse(s.str());
+    return json::parse(text);
   } catch (const json::parse_error& e) {
     throw InputError(file + ": not valid JSON (byte " + std::to_string(e.byte) + ")");
+  } catch (const json::exception& e) {
+    // nlohmann reports a number too large for a double ("1e400") as out_of_range, not parse_error.
+    throw InputError(file + ": not valid JSON (" + (e.id == 406 ? std::string("number out of range") : e.what()) + ")");
   }
 }
 

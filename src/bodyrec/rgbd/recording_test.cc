@@ -306,5 +306,13 @@ TEST(RecordingJson, NonFiniteQuaternionIsRejected) {
   EXPECT_TRUE(contains(input_error([&] { bodies_from_json(json::parse(j.dump()), "b.json"); }), "orientation[0]: expected a number"));
 }
 
+// Fuzz finding (fuzz/regressions/recording_meta, recording_bodies): a number too large for a double made
+// nlohmann throw out_of_range, which escaped as an untyped exception; now an InputError naming the file.
+TEST(RecordingJson, FuzzNumberOverflowIsAnInputError) {
+  EXPECT_EQ(input_error([] { parse_json_text("{\"fps\": 1e400}", "r/meta.json"); }),
+            "r/meta.json: not valid JSON (number out of range)");
+  EXPECT_TRUE(contains(input_error([] { parse_json_text("{\"fps\": 1", "r/meta.json"); }), "r/meta.json: not valid JSON (byte"));
+}
+
 }  // namespace
 }  // namespace bodyrec
