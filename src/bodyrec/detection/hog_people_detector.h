@@ -74,6 +74,7 @@ class HogPeopleDetector : public PeopleDetector {
   struct Search {
     double resize;
     int levels;
+    int padding;
   };
   // How to search `region`: the configured scales, or the adaptive ones once the height model is ready.
   Search plan(const cv::Rect& region) const;
