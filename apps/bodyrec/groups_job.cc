@@ -11,17 +11,6 @@
 namespace bodyrec::cli {
 namespace {
 
-cv::Scalar role_color(Role role) {
-  switch (role) {
-    case Role::kLeader: return colors::kBlue;
-    case Role::kMember: return colors::kGreen;
-    case Role::kNonMember: return colors::kRed;
-    case Role::kPotentialMember: return colors::kOrange;
-    case Role::kUnknown: break;
-  }
-  return colors::kWhite;
-}
-
 nlohmann::json box_json(const Box& b) { return {b.x, b.y, b.width, b.height}; }
 double round2(double v) { return std::round(v * 100) / 100; }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/annotate.h"
 
 namespace bodyrec {
 
@@ -16,6 +17,17 @@ std::string to_string(Role role) {
     case Role::kUnknown: break;
   }
   return "unknown";
+}
+
+cv::Scalar role_color(Role role) {
+  switch (role) {
+    case Role::kLeader: return colors::kBlue;
+    case Role::kMember: return colors::kGreen;
+    case Role::kNonMember: return colors::kRed;
+    case Role::kPotentialMember: return colors::kOrange;
+    case Role::kUnknown: break;
+  }
+  return colors::kWhite;
 }
 
 std::optional<Role> parse_role(const std::string& text) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core/types.hpp>
+
 #include "bodyrec/core/geometry.h"
 
 namespace bodyrec {
@@ -20,6 +22,9 @@ enum class Role { kUnknown = 0, kMember = 1, kNonMember = 2, kLeader = 3, kPoten
 std::string to_string(Role role);
 // The inverse, also accepting "non_member"/"nonmember" and "potential"; nullopt for anything else.
 std::optional<Role> parse_role(const std::string& text);
+// The thesis's drawing colours (BGR): leader blue, member green, non-member red; potential member orange,
+// unknown white. One definition for the annotated video and the HTML report.
+cv::Scalar role_color(Role role);
 
 // One tracked person on one frame, as the role logic sees it.
 struct RoleInput {

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "bodyrec/groups/roles.h"
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
@@ -137,13 +138,7 @@ std::string render_report(const ReportInput& input) {
 }
 
 void annotate_groups_frame(cv::Mat& image, const GroupsFrameRow& row) {
-  auto bgr = [](const std::string& role) {
-    if (role == "leader") return colors::kBlue;
-    if (role == "member") return colors::kGreen;
-    if (role == "non-member") return colors::kRed;
-    if (role == "potential-member" || role == "potential member") return colors::kOrange;
-    return colors::kWhite;
-  };
+  auto bgr = [](const std::string& role) { return role_color(parse_role(role).value_or(Role::kUnknown)); };
   for (const auto& p : row.people) {
     std::string label = std::to_string(p.id);
     if (p.group >= 0) label += " g" + std::to_string(p.group);
