@@ -113,8 +113,8 @@ GroundTruth read_mot(std::istream& in, const std::string& path, bool is_ground_t
     if (f.size() > 6) b.score = parse_finite_field(f[6], where, "conf");
     if (is_ground_truth) {
       const bool zero_conf = f.size() > 6 && b.score == 0;
-      const bool other_class = f.size() > 7 && parse_finite_field(f[7], where, "class") != 1 &&
-                               parse_finite_field(f[7], where, "class") != -1;
+      const double object_class = f.size() > 7 ? parse_finite_field(f[7], where, "class") : 1;
+      const bool other_class = object_class != 1 && object_class != -1;
       b.ignore = zero_conf || other_class;
       b.score = 1.0;
     }
