@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <array>
 #include <map>
 #include <optional>
 
@@ -82,6 +83,11 @@ void add_orient_options(CLI::App& sub, OrientCliOptions& options) {
       ->capture_default_str();
   sub.add_flag("--no-faces", options.no_faces, "Do not run the face detector (thesis: the face flag is then unknown)");
   sub.add_flag("--depth-only", options.depth_only, "Ignore skeletons: orient from the body pixels' depth (robust only)");
+  sub.add_option("--bodies-from", options.bodies_from,
+                 "auto: skeletons, else body index, else own depth segmentation; or force skeleton, body-index "
+                 "(slots only) or depth (segment the depth image, ignore the sensor's bodies)")
+      ->check(CLI::IsMember({"auto", "skeleton", "body-index", "depth"}))
+      ->capture_default_str();
   sub.add_option("--max-frames", options.max_frames, "Stop after this many frames; -1 = all");
   add_segment_options(sub, options.seg);
 }
@@ -121,10 +127,22 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
   if (options.depth_only && !meta.streams.depth)
     throw InputError(input + ": --depth-only needs a depth stream");
 
+  const std::string& from = options.bodies_from;
+  const auto need = [&](bool has, const char* stream) {
+    if (!has) throw InputError(input + ": --bodies-from " + from + " needs a " + stream + " stream");
+  };
+  if (from == "skeleton") need(meta.streams.bodies, "bodies");
+  if (from == "body-index") need(meta.streams.body_index, "body index");
+  if (from == "depth") need(reader && meta.streams.depth, "depth");
+  const bool use_skeletons = from == "skeleton" || (from == "auto" && meta.streams.bodies);
+  const bool use_index = from == "body-index" || (from == "auto" && !meta.streams.bodies && meta.streams.body_index);
+
   OrientationEstimator estimator(meta, eo);
   std::optional<DepthSegmenter> segmenter;
-  if (reader && meta.streams.depth && !meta.streams.body_index && (!meta.streams.bodies || options.depth_only))
+  if (from == "depth" ||
+      (from == "auto" && reader && meta.streams.depth && !meta.streams.body_index && (!meta.streams.bodies || options.depth_only)))
     segmenter = make_segmenter(*reader, options.seg);
+  std::array<int, kMaxBodies> slot_seen{}, slot_appearance{};  // body-index keys: per slot, last frame + 1, count
   SegmentKeys keys;
   cv::Mat labels;
   int done = 0;
@@ -140,8 +158,8 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
     labels = f.body_index;
     OrientFrame out{f, labels, {}, 0};
     std::vector<BodyRef> refs;
-    const bool skeletons = !f.bodies.empty() && !options.depth_only;
-    if (skeletons || (options.depth_only && !f.body_index.empty() && !f.bodies.empty())) {
+    const bool skeletons = use_skeletons && !f.bodies.empty() && !options.depth_only;
+    if (use_skeletons && (skeletons || (options.depth_only && !f.body_index.empty() && !f.bodies.empty()))) {
       for (const Body& b : f.bodies) {
         BodyRef r = BodyRef::of(b, f.body_index);
         if (!skeletons) r.body = nullptr;
@@ -155,13 +173,17 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
             if (f.truth->people[t].tracking_id == b.tracking_id) ob.truth = static_cast<int>(t);
         out.bodies.push_back(ob);
       }
-    } else if (!f.body_index.empty()) {
+    } else if (use_index && !f.body_index.empty()) {
       int counts[256] = {0};
       for (int v = 0; v < f.body_index.rows; ++v)
         for (int u = 0; u < f.body_index.cols; ++u) ++counts[f.body_index.at<uint8_t>(v, u)];
       for (int s = 0; s < kMaxBodies; ++s) {
         if (counts[s] < 200) continue;
-        refs.push_back({static_cast<uint64_t>(1000000 + s), nullptr, f.body_index, s});
+        const size_t k = static_cast<size_t>(s);
+        // A slot empty for more than a third of a second (not a brief occlusion or dropout) holds a new body.
+        if (slot_seen[k] == 0 || i - slot_seen[k] > static_cast<int>(meta.fps / 3)) ++slot_appearance[k];
+        slot_seen[k] = i + 1;
+        refs.push_back({static_cast<uint64_t>(1000000 + 10 * slot_appearance[k] + s), nullptr, f.body_index, s});
         OrientedBody ob;
         ob.key = refs.back().key;
         ob.slot = s;

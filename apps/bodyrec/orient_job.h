@@ -20,16 +20,20 @@ struct OrientCliOptions {
   std::string views = "robust";
   bool no_faces = false;
   bool depth_only = false;  // ignore skeletons: orient from the body pixels' depth
+  // Where bodies come from: auto (skeletons, else body index, else own depth segmentation), skeleton,
+  // body-index (slots only, as a sensor without skeletons gives them) or depth (own segmentation).
+  std::string bodies_from = "auto";
   bool face_oracle = false; // eval only: the face flag from the truth yaw (|yaw| < 90) instead of the detector
   int max_frames = -1;
   SegmentCliOptions seg;
 };
 
-// --views, --no-faces, --depth-only, --max-frames and the segmentation options.
+// --views, --no-faces, --depth-only, --bodies-from, --max-frames and the segmentation options.
 void add_orient_options(CLI::App& sub, OrientCliOptions& options);
 
 struct OrientedBody {
-  uint64_t key = 0;      // tracking id, 1000000 + body-index slot, or 2000000 + segment track
+  uint64_t key = 0;      // tracking id; 1000000 + 10 x appearance + body-index slot (a slot empty for over
+                         // a third of a second holds a new body); or 2000000 + segment track
   int slot = -1;         // label in the frame's labels (body index or segmentation), -1 none
   const Body* body = nullptr;
   ViewEstimate view;

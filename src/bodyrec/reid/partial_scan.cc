@@ -35,7 +35,7 @@ PartialScanExtractor::PartialScanExtractor(const RecordingMeta& meta, PartialSca
     ray_y_[static_cast<size_t>(v)] = static_cast<float>((meta_.depth.cy - v) / meta_.depth.fy);
 }
 
-cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& ref) const {
+cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour) const {
   const cv::Mat& d = frame.depth;
   const cv::Mat& l = ref.labels;
   if (d.type() != CV_16U || d.cols != meta_.depth.width || d.rows != meta_.depth.height)
@@ -50,16 +50,21 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
   const int half = std::max(1, static_cast<int>(std::ceil(0.5 * kc.fx / meta_.depth.fx)));
   cv::Mat mask(kc.height, kc.width, CV_8U, cv::Scalar(0));
   int bu0 = kc.width, bu1 = -1, bv0 = kc.height, bv1 = -1;  // bounding box of the splats
+  int body = 0, inside = 0;  // the body's depth pixels, and those landing in the colour image
+  bool at_edge = false;      // the body touches the depth image's left or right border (cut off)
   for (int v = 0; v < d.rows; ++v) {
     const uint8_t* lab = l.ptr<uint8_t>(v);
     const uint16_t* dep = d.ptr<uint16_t>(v);
     for (int u = 0; u < d.cols; ++u) {
       if (lab[u] != ref.label || dep[u] == 0) continue;
+      ++body;
+      at_edge |= u == 0 || u == d.cols - 1;
       const float z = dep[u] * unit;
       const cv::Vec3f p = r * cv::Vec3f(ray_x_[static_cast<size_t>(u)] * z, ray_y_[static_cast<size_t>(v)] * z, z) + t;
       if (p[2] <= 0.05f) continue;
       const int cu = static_cast<int>(std::lround(kc.cx + kc.fx * p[0] / p[2]));
       const int cv_ = static_cast<int>(std::lround(kc.cy - kc.fy * p[1] / p[2]));
+      inside += cu >= 0 && cu < kc.width && cv_ >= 0 && cv_ < kc.height;
       const int u0 = std::max(0, cu - half + 1), u1 = std::min(kc.width - 1, cu + half);
       const int v0 = std::max(0, cv_ - half + 1), v1 = std::min(kc.height - 1, cv_ + half);
       for (int y = v0; y <= v1; ++y) {
@@ -70,6 +75,8 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
       bu0 = std::min(bu0, u0), bu1 = std::max(bu1, u1), bv0 = std::min(bv0, v0), bv1 = std::max(bv1, v1);
     }
   }
+  // A body cut off by the depth image's side shows only part of itself: count it half.
+  if (in_colour) *in_colour = body ? static_cast<double>(inside) / body * (at_edge ? 0.5 : 1.0) : 0.0;
   if (bu1 < 0) return {};
   // Close the holes of depth dropouts, then keep the largest part (stray edge pixels go).
   const cv::Rect box(bu0, bv0, bu1 - bu0 + 1, bv1 - bv0 + 1);
@@ -93,7 +100,8 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
   if (frame.depth.empty() || ref.labels.empty()) return fail("no depth or no body pixels");
   if (frame.color.type() != CV_8UC3 || frame.color.cols != meta_.color.width || frame.color.rows != meta_.color.height)
     throw InputError("partial scan: frame " + std::to_string(frame.index) + ": colour must be CV_8UC3 of the colour size");
-  const cv::Mat full = color_mask(frame, ref);
+  double in_colour = 0;
+  const cv::Mat full = color_mask(frame, ref, &in_colour);
   if (full.empty()) return fail("the body has no pixels with depth");
   const cv::Rect tight = cv::boundingRect(full);
   const int pixels = cv::countNonZero(full(tight));
@@ -102,6 +110,7 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
   PartialScan s;
   s.view = view;
   s.pixels = pixels;
+  s.in_colour = in_colour;
   const int m = options_.margin_px;
   s.box = cv::Rect(tight.x - m, tight.y - m, tight.width + 2 * m, tight.height + 2 * m) &
           cv::Rect(0, 0, frame.color.cols, frame.color.rows);
@@ -153,7 +162,7 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
     const double height = a ? a->height_m : 0.0;
     s.head = tight.y > 0;
     s.feet = tight.br().y < frame.color.rows;
-    s.completeness = std::min(1.0, height / 1.6) * (touches ? 0.6 : 1.0);
+    s.completeness = std::min(1.0, height / 1.6) * (touches ? 0.6 : 1.0) * in_colour;
   }
   s.quality = s.completeness * (0.5 + 0.5 * s.sharpness) * (0.5 + 0.5 * s.resolution);
   return s;

@@ -10,7 +10,10 @@
 //   completeness: with a skeleton, the share of the body's tracked joints whose depth pixel (within
 //     2 px) belongs to the body and lies inside both images (occluded or clipped joints count against),
 //     times 0.5 when the head or both feet are missing; without one, the body's vertical extent over
-//     1.6 m (capped at 1), times 0.6 when the mask touches the image border (clipped).
+//     1.6 m (capped at 1), times 0.6 when the mask touches the image border (clipped), times the share
+//     of the body's depth pixels that land inside the colour image (the colour camera sees less than
+//     the depth camera at the top and bottom, and a body entering at the side shows only a sliver),
+//     halved when the body touches the depth image's left or right border (cut off).
 //   sharpness: variance of the Laplacian of the grey crop inside the (eroded) mask, v / (v + 100).
 //   resolution: mask height over half the colour image height, capped at 1 (far bodies give small scans).
 //
@@ -35,6 +38,8 @@ struct PartialScan {
   cv::Mat mask;   // CV_8U, image size: 255 person, 0 background
   cv::Rect box;   // the crop in colour pixels
   int pixels = 0;            // mask pixels
+  double in_colour = 0;      // share of the body's depth pixels that map inside the colour image,
+                             // halved when the body touches the depth image's side
   double completeness = 0;   // 0..1 (see above)
   double sharpness = 0;      // 0..1
   double resolution = 0;     // 0..1
@@ -62,7 +67,8 @@ class PartialScanExtractor {
 
   // The person's mask in full colour-image coordinates (CV_8U, 255 person), as extract() builds it
   // before cropping; empty when the body has no pixels.
-  cv::Mat color_mask(const RgbdFrame& frame, const BodyRef& ref) const;
+  // `in_colour`, when given, receives PartialScan::in_colour.
+  cv::Mat color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour = nullptr) const;
 
  private:
   RecordingMeta meta_;

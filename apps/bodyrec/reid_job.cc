@@ -1,0 +1,117 @@
+#include "reid_job.h"
+
+#include <chrono>
+#include <map>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/reid/partial_scan.h"
+
+namespace bodyrec::cli {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
+  if (gallery_option) add_gallery_path_option(sub, o.gallery);
+  std::string names;
+  for (const auto& n : matcher_names()) names += (names.empty() ? "" : ", ") + n;
+  sub.add_option("--matcher", o.matcher,
+                 "Appearance matcher: " + names +
+                     ". stripes (default): colour histograms in stripes, no model needed; default/lomo-xqda with "
+                     "--model (bodyrec train-reid); kaze: the thesis's score")
+      ->capture_default_str();
+  sub.add_option("--model", o.model, "Learned model for --matcher default/lomo-xqda (bodyrec train-reid --out)");
+  sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery");
+  sub.add_option("--prune-unseen-for", o.prune_unseen_for,
+                 "Before the run, forget users unseen for this long (30d, 12h, 45m...)");
+  sub.add_option("--decide-after", o.reid.decide_after, "Scans a new body collects before it is recognised or enrolled")
+      ->capture_default_str();
+  sub.add_option("--max-wait", o.reid.max_wait_frames, "Frames after which a body is decided with the scans it has")
+      ->capture_default_str();
+  sub.add_option("--min-quality", o.reid.min_quality, "Partial scans below this quality (0..1) are not used")
+      ->capture_default_str();
+  sub.add_option("--threshold", o.reid.threshold,
+                 "Similarity above which a scan matches a user (default: the matcher's own threshold)");
+  sub.add_option("--margin", o.reid.margin,
+                 "A scan votes for its best user only when it beats the next by this share of |threshold|")
+      ->capture_default_str();
+  sub.add_option("--new-gap", o.reid.new_gap,
+                 "A scan says \"new person\" only when its best user is below the threshold by this share of "
+                 "|threshold|")
+      ->capture_default_str();
+  sub.add_option("--match-views", o.match_views,
+                 "all: compare a scan with every view of a user; near: same and complementary views only (thesis), "
+                 "all views when the user has none of those")
+      ->check(CLI::IsMember({"all", "near"}))
+      ->capture_default_str();
+  sub.add_option("--left-after", o.reid.left_after_s, "Seconds unseen after which a body has left")
+      ->capture_default_str();
+  add_orient_options(sub, o.orient);
+}
+
+std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path) {
+  GalleryOptions g;
+  g.create = true;
+  g.store_images = !options.no_images;
+  auto gallery = std::make_unique<Gallery>(path, g);
+  if (!options.prune_unseen_for.empty())
+    gallery->prune_unseen(parse_retention(options.prune_unseen_for, "--prune-unseen-for"));
+  return gallery;
+}
+
+RecordingMeta reid_input_meta(const std::string& input) {
+  if (is_skeleton_file(input)) throw InputError(input + ": re-identification needs a recording with colour and depth");
+  const RecordingMeta meta = RecordingReader(input).meta();
+  if (!meta.streams.color || !meta.streams.depth)
+    throw InputError(input + "/meta.json: re-identification needs colour and depth streams");
+  return meta;
+}
+
+int run_reid(const std::string& input, const ReidCliOptions& options, Gallery& gallery,
+             const std::function<void(const ReidFrame&)>& sink) {
+  const RecordingMeta meta = reid_input_meta(input);
+  const auto matcher = make_matcher(options.matcher, options.model);
+  OnlineReidOptions ro = options.reid;
+  ro.all_views = options.match_views == "all";
+  if (ro.source.empty()) ro.source = input;
+  OnlineReid reid(gallery, *matcher, ro);
+  const PartialScanExtractor scans(meta);
+  std::map<uint64_t, cv::Rect> last_box;  // per track: the colour box of its last scan
+  const int frames = run_orientation(input, options.orient, [&](const OrientFrame& f) {
+    ReidFrame out{f.frame, f.bodies, {}, f.ms, 0, 0};
+    std::vector<ReidBody> bodies;
+    auto t0 = std::chrono::steady_clock::now();
+    for (const OrientedBody& b : f.bodies) {
+      ReidBody rb;
+      rb.track = b.key;
+      rb.view = b.view;
+      if (reid.wants_scan(b.key, b.view)) {
+        const BodyRef ref{b.key, b.body, f.labels, b.slot};
+        rb.scan = scans.extract(f.frame, ref, b.view);
+        if (rb.scan) last_box[b.key] = rb.scan->box;
+      }
+      const auto box = last_box.find(b.key);
+      if (box != last_box.end()) rb.box = box->second;
+      bodies.push_back(std::move(rb));
+    }
+    out.ms_scan = ms_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    out.step = reid.step(f.frame.time_s, bodies);
+    out.ms_reid = ms_since(t0);
+    for (const ReidEvent& e : out.step.events)
+      if (e.kind == ReidEventKind::kLeft) last_box.erase(e.track);
+    sink(out);
+  });
+  RgbdFrame end;
+  end.index = -1;
+  ReidFrame last{end, {}, {}, 0, 0, 0};
+  last.step.events = reid.finish();
+  sink(last);
+  return frames;
+}
+
+}  // namespace bodyrec::cli

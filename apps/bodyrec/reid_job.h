@@ -1,0 +1,53 @@
+// Shared by `bodyrec reid` and `bodyrec eval reid-stream`: reads a recording, finds and orients its
+// bodies (orient_job.h: skeletons, body index only, or own depth segmentation), takes partial scans of
+// the bodies the online re-identification wants, and runs OnlineReid frame by frame on a gallery.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bodyrec/reid/online_reid.h"
+#include "gallery_options.h"
+#include "orient_job.h"
+
+namespace bodyrec::cli {
+
+struct ReidCliOptions {
+  OrientCliOptions orient;
+  GalleryCliOptions gallery;
+  std::string matcher = "stripes", model;
+  bool no_images = false;
+  std::string match_views = "all";
+  std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
+  OnlineReidOptions reid;
+};
+
+// --gallery, --matcher, --model, --no-images, --prune-unseen-for, --decide-after, --max-wait,
+// --min-quality, --threshold, --left-after and the orientation/segmentation options.
+void add_reid_options(CLI::App& sub, ReidCliOptions& options, bool gallery_option = true);
+
+struct ReidFrame {
+  const RgbdFrame& frame;
+  std::vector<OrientedBody> bodies;  // same order as step.identities
+  ReidStep step;
+  double ms_orient = 0, ms_scan = 0, ms_reid = 0;
+};
+
+// Runs the recording through; `sink` gets every frame (and, with an empty frame.index = -1 frame, the
+// final `left` events of finish()). Returns the number of frames. Errors as the readers and the
+// gallery say; output already passed to `sink` stays valid.
+int run_reid(const std::string& input, const ReidCliOptions& options, Gallery& gallery,
+             const std::function<void(const ReidFrame&)>& sink);
+
+// The recording's meta; InputError when it cannot be read or lacks colour or depth (call before
+// creating a gallery, so a wrong path leaves no empty gallery behind).
+RecordingMeta reid_input_meta(const std::string& input);
+
+// Opens (or creates) the gallery the options name.
+std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);
+
+}  // namespace bodyrec::cli

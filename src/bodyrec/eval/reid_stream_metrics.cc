@@ -1,0 +1,69 @@
+#include "bodyrec/eval/reid_stream_metrics.h"
+
+#include <algorithm>
+#include <tuple>
+#include <vector>
+
+namespace bodyrec {
+namespace {
+
+template <typename K>
+K majority(const std::map<K, int>& counts) {
+  K best{};
+  int most = -1;
+  for (const auto& [k, n] : counts)
+    if (n > most) best = k, most = n;
+  return best;
+}
+
+}  // namespace
+
+void ReidStreamCounter::add(int identity, uint64_t track, std::optional<int64_t> user) {
+  ++frames_;
+  identities_.insert(identity);
+  TrackStats& t = tracks_[track];
+  ++t.identities[identity];
+  if (!user) {
+    ++undecided_;
+    return;
+  }
+  t.user = user;
+  ++user_frames_[*user][identity];
+}
+
+ReidStreamScore ReidStreamCounter::score() const {
+  ReidStreamScore s;
+  s.frames = frames_;
+  s.undecided = undecided_;
+  s.identities = static_cast<int>(identities_.size());
+  s.users = static_cast<int>(user_frames_.size());
+  // One user per identity and one identity per user, chosen greedily by shared body-frames: the frames
+  // of a second user for one person (a split) or of a second person under one user (a merge) are wrong.
+  std::vector<std::tuple<int, int64_t, int>> pairs;  // frames, user, identity
+  for (const auto& [user, counts] : user_frames_)
+    for (const auto& [identity, n] : counts) pairs.emplace_back(n, user, identity);
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+  std::set<int64_t> used_users;
+  std::set<int> used_identities;
+  for (const auto& [n, user, identity] : pairs)
+    if (!used_users.count(user) && !used_identities.count(identity)) {
+      used_users.insert(user);
+      used_identities.insert(identity);
+      s.correct += n;
+    }
+  s.accuracy = frames_ ? static_cast<double>(s.correct) / frames_ : 0.0;
+  std::map<int, std::set<int64_t>> users_of_identity;
+  std::map<int64_t, std::set<int>> identities_of_user;
+  for (const auto& [key, t] : tracks_) {
+    if (!t.user) continue;
+    ++s.tracks;
+    const int identity = majority(t.identities);
+    users_of_identity[identity].insert(*t.user);
+    identities_of_user[*t.user].insert(identity);
+  }
+  for (const auto& [i, users] : users_of_identity) s.splits += static_cast<int>(users.size()) - 1;
+  for (const auto& [u, ids] : identities_of_user) s.merges += static_cast<int>(ids.size()) - 1;
+  return s;
+}
+
+}  // namespace bodyrec
