@@ -15,7 +15,8 @@ struct SynthCommand {
   std::string out;
   bool json = false, quiet = false;
 
-  void run() const {
+  void run(bool frames_given) {
+    if (!frames_given) options.frames = synth_recommended_frames(options.scenario, options.people);
     options.check();
     Synthesizer synth(options);
     RecordingWriter writer(out, synth.meta());
@@ -45,19 +46,29 @@ struct SynthCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<SynthCommand>();
   CLI::App* sub = app.add_subcommand("synth", "Render a synthetic RGB-D recording of people with ground truth");
-  sub->add_option("--people", command->options.people, "Number of people (1-6)")->check(CLI::Range(1, 6));
+  // The range is checked by SynthOptions::check, which says why in one line.
+  sub->add_option("--people", command->options.people,
+                  "Number of people (1-8; like a Kinect, at most 6 are tracked at once: a 7th in view gets no body "
+                  "until a slot frees)");
   sub->add_option("--seed", command->options.seed, "Random seed: looks, paths and sensor noise");
-  sub->add_option("--frames", command->options.frames, "Frames to render (30 per second; the scenario spans them all)")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--scenario", command->options.scenario, "walk-turn, cross, group or reenter")
-      ->check(CLI::IsMember({"walk-turn", "cross", "group", "reenter"}));
+  CLI::Option* frames =
+      sub->add_option("--frames", command->options.frames,
+                      "Frames to render (30 per second; the scenario spans them all). Default 150; for visits "
+                      "450 with 1-4 people, 540 with 5, 630 with 6, 710 with 7, 800 with 8 (visits of about 5 s)")
+          ->check(CLI::PositiveNumber);
+  sub->add_option("--scenario", command->options.scenario,
+                  "walk-turn, cross, group, reenter, or visits (everyone comes, turns round, leaves and comes back "
+                  "from the other side, 2-4 people in view at once)")
+      ->check(CLI::IsMember(synth_scenarios()));
   sub->add_option("--out", command->out, "Recording directory to create (must not exist or be empty)")->required();
   sub->add_option("--color-width", command->options.color_width, "Colour image width");
   sub->add_option("--color-height", command->options.color_height, "Colour image height");
   sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people, seed, scenario, bodies, render_ms_per_frame)");
   sub->add_flag("-q,--quiet", command->quiet, "No progress on stderr");
-  sub->footer("Example: bodyrec synth --people 2 --seed 7 --frames 150 --scenario cross --out rec_synth");
-  sub->callback([command] { command->run(); });
+  sub->footer(
+      "Examples:\n  bodyrec synth --people 2 --seed 7 --frames 150 --scenario cross --out rec_synth\n"
+      "  bodyrec synth --people 8 --seed 1 --scenario visits --out rec_visits   # 800 frames");
+  sub->callback([command, frames] { command->run(frames->count() > 0); });
 }
 
 const bool registered = register_command({"", 51, add});

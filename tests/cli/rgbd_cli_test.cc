@@ -46,7 +46,11 @@ TEST(SynthCli, SameSeedGivesIdenticalBytesDifferentSeedDiffers) {
 
 TEST(SynthCli, UsageErrors) {
   TempDir dir;
-  EXPECT_EQ(run_bodyrec({"synth", "--people", "7", "--out", (dir / "x").string()}).exit_code, 2);
+  const RunResult nine = run_bodyrec({"synth", "--people", "9", "--out", (dir / "x").string()});
+  EXPECT_EQ(nine.exit_code, 2);
+  EXPECT_TRUE(contains(nine.err, "--people")) << nine.err;
+  EXPECT_EQ(std::count(nine.err.begin(), nine.err.end(), '\n'), 1) << nine.err;  // one line
+  EXPECT_FALSE(fs::exists(dir / "x" / "meta.json"));
   EXPECT_EQ(run_bodyrec({"synth", "--scenario", "dance", "--out", (dir / "x").string()}).exit_code, 2);
   fs::create_directories(dir / "full");
   write_text(dir / "full" / "f.txt", "x");

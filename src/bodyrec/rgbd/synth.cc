@@ -91,7 +91,59 @@ synth::Pose pose_at(const Script& s, double t, double height) {
 // Horizontal distance from the optical axis at which someone at depth z is well out of view.
 double outside(double z) { return 0.72 * z + 0.7; }
 
+// "visits": every person comes twice. Visit k of the 2n (in a seeded order) starts at k * step and lasts
+// `overlap` steps, so that about that many visits are under way at any time. A visit: in from one side,
+// walk to a spot, turn round once, out on the other side. The second visit comes in from the side the first
+// left by, in another lane (lanes go by visit order, so visits under way at once never share one).
+double visits_overlap(int people) { return std::min(3.5, people - 0.5); }
+
+std::vector<Script> make_visits(const SynthOptions& o) {
+  const int n = o.people;
+  const double overlap = visits_overlap(n), step = 1.0 / (2 * n - 1 + overlap), length = overlap * step;
+  const int lanes = n % 5 == 0 ? 4 : 5;
+  const auto lane = [&](int k) { return 2.2 + 0.5 * (k % lanes); };
+  // second[i]: person i's place in the second round. The identity always keeps a person's two visits apart
+  // (a gap of n - overlap >= 0.5 steps) and in different lanes (n % lanes != 0); seeded shuffles that do
+  // too are preferred, so the order of returns differs from the order of first visits.
+  std::vector<int> second(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) second[static_cast<size_t>(i)] = i;
+  for (uint64_t attempt = 0; attempt < 64; ++attempt) {
+    std::vector<int> p = second;
+    for (int i = n - 1; i > 0; --i)
+      std::swap(p[static_cast<size_t>(i)], p[static_cast<size_t>(uniform(o.seed, 600 + attempt, static_cast<uint64_t>(i)) * (i + 1))]);
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) {
+      const int k = n + p[static_cast<size_t>(i)];
+      ok = k - i >= overlap + 0.5 && k % lanes != i % lanes;
+    }
+    if (ok) {
+      second = p;
+      break;
+    }
+  }
+  std::vector<Script> scripts;
+  for (int i = 0; i < n; ++i) {
+    const auto u = [&](int k) { return uniform(o.seed, 700 + static_cast<uint64_t>(i), static_cast<uint64_t>(k)); };
+    double side = (i % 2 == 0) ? -1 : 1;  // -1 enters from the left (small u)
+    const int first = i, again = n + second[static_cast<size_t>(i)];
+    Script s(side * outside(lane(first)), lane(first), 0);
+    for (int k : {first, again}) {
+      const double z = lane(k), t0 = k * step;
+      const double spot = 0.7 * (2 * u(2 * k) - 1), turn = u(2 * k + 1) < 0.5 ? 360 : -360;
+      if (k == first)
+        s.wait(t0);
+      else
+        s.walk_to(side * outside(z), z, t0);  // out of view: over to this visit's lane
+      s.walk_to(spot, z, t0 + 0.4 * length).turn_by(turn, t0 + 0.7 * length).walk_to(-side * outside(z), z, t0 + length);
+      side = -side;
+    }
+    scripts.push_back(s);
+  }
+  return scripts;
+}
+
 std::vector<Script> make_scripts(const SynthOptions& o) {
+  if (o.scenario == "visits") return make_visits(o);
   std::vector<Script> scripts;
   const int n = o.people;
   const auto u = [&](int i, int k) { return uniform(o.seed, 500 + static_cast<uint64_t>(i), static_cast<uint64_t>(k)); };
@@ -101,7 +153,8 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
   for (int i = 0; i < n; ++i) lane_of[static_cast<size_t>(i)] = i;
   for (int i = n - 1; i > 0; --i)
     std::swap(lane_of[static_cast<size_t>(i)], lane_of[static_cast<size_t>(uniform(o.seed, 88, static_cast<uint64_t>(i)) * (i + 1))]);
-  const double spacing = n > 1 ? std::min(0.8, 2.2 / (n - 1)) : 0.0;
+  // Up to 6 people share 2.3..4.5 m; more keep 0.4 m apart and reach further back.
+  const double spacing = n > 6 ? 0.4 : n > 1 ? std::min(0.8, 2.2 / (n - 1)) : 0.0;
   const auto lane = [&](int i) { return 2.3 + spacing * lane_of[static_cast<size_t>(i) % lane_of.size()]; };
   for (int i = 0; i < n; ++i) {
     const double side = (i % 2 == 0) ? -1 : 1;  // -1 enters from the left (small u)
@@ -142,18 +195,26 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
 }  // namespace
 
 void SynthOptions::check() const {
-  if (people < 1 || people > kMaxBodies) throw UsageError("synth: --people must be 1..6 (Kinect tracks at most 6 bodies)");
+  if (people < 1 || people > kMaxSynthPeople)
+    throw UsageError("synth: --people must be 1..8 (at most 6 are tracked at once, like a Kinect)");
   if (frames < 1) throw UsageError("synth: --frames must be positive");
   const auto& s = synth_scenarios();
   if (std::find(s.begin(), s.end(), scenario) == s.end())
-    throw UsageError("synth: unknown --scenario \"" + scenario + "\" (walk-turn, cross, group, reenter)");
+    throw UsageError("synth: unknown --scenario \"" + scenario + "\" (walk-turn, cross, group, reenter, visits)");
   if (color_width < 64 || color_height < 48 || color_width > 4096 || color_height > 4096)
     throw UsageError("synth: colour size must be 64x48 .. 4096x4096");
 }
 
 const std::vector<std::string>& synth_scenarios() {
-  static const std::vector<std::string> s = {"walk-turn", "cross", "group", "reenter"};
+  static const std::vector<std::string> s = {"walk-turn", "cross", "group", "reenter", "visits"};
   return s;
+}
+
+int synth_recommended_frames(const std::string& scenario, int people) {
+  if (scenario != "visits") return 150;
+  // 150 frames (5 s) per visit; the recording spans (2 people - 1 + overlap) / overlap visit lengths.
+  const double overlap = visits_overlap(people);
+  return static_cast<int>(std::ceil(150 * (2 * people - 1 + overlap) / overlap / 10)) * 10;
 }
 
 struct Synthesizer::Impl {
@@ -167,14 +228,51 @@ struct Synthesizer::Impl {
 
   double time_of(int index) const { return options.frames > 1 ? static_cast<double>(index) / (options.frames - 1) : 0.0; }
 
-  std::vector<std::vector<int>> entries;  // [person][frame]: times the person has come into view so far
+  // [person][frame], worked out once: the body-index slot (-1: none), and how many times the person has
+  // been tracked so far (negative while not tracked); tracking ids follow the count.
+  std::vector<std::vector<int>> slots, entries;
 
-  // Whether person i's SpineBase is inside the depth image at frame `index` (drives tracking ids).
+  synth::Pose pose(int i, int index) const {
+    return pose_at(scripts[static_cast<size_t>(i)], time_of(index), looks[static_cast<size_t>(i)].height);
+  }
+  // Whether person i's SpineBase is inside the depth image at frame `index` (Kinect tracks the body then).
   bool in_view(int i, int index) const {
-    const synth::Pose p = pose_at(scripts[static_cast<size_t>(i)], time_of(index), looks[static_cast<size_t>(i)].height);
-    const cv::Vec3d pelvis = p.floor_point + cv::Vec3d(0, 0.53 * looks[static_cast<size_t>(i)].height, 0);
+    const cv::Vec3d pelvis = pose(i, index).floor_point + cv::Vec3d(0, 0.53 * looks[static_cast<size_t>(i)].height, 0);
     const auto px = project(meta.depth, pelvis);
     return px && px->x >= 0 && px->x < meta.depth.width;
+  }
+
+  // Slots: a person takes the lowest free one when any part of them may show in the depth image (or the
+  // pelvis is in it) and keeps it until wholly out; people waiting for a slot are served in identity order.
+  // Tracked = pelvis in view and holding a slot; each start of being tracked is a new entry (tracking id).
+  void assign_slots() {
+    const size_t n = static_cast<size_t>(options.people);
+    slots.assign(n, std::vector<int>(static_cast<size_t>(options.frames), -1));
+    entries = slots;
+    std::vector<int> slot(n, -1), count(n, 0);
+    std::vector<bool> was_tracked(n, false), view(n), present(n);
+    for (int k = 0; k < options.frames; ++k) {
+      std::vector<bool> taken(kMaxBodies, false);
+      for (size_t i = 0; i < n; ++i) {
+        const int p = static_cast<int>(i);
+        view[i] = in_view(p, k);
+        present[i] = view[i] || synth::may_cover_image(synth::build_person(looks[i], pose(p, k)), meta.depth);
+        if (!present[i]) slot[i] = -1;
+        if (slot[i] >= 0) taken[static_cast<size_t>(slot[i])] = true;
+      }
+      for (size_t i = 0; i < n; ++i) {
+        for (size_t free = 0; present[i] && slot[i] < 0 && free < taken.size(); ++free)
+          if (!taken[free]) {
+            taken[free] = true;
+            slot[i] = static_cast<int>(free);
+          }
+        const bool tracked = view[i] && slot[i] >= 0;
+        if (tracked && !was_tracked[i]) ++count[i];
+        was_tracked[i] = tracked;
+        slots[i][static_cast<size_t>(k)] = slot[i];
+        entries[i][static_cast<size_t>(k)] = tracked ? count[i] : -count[i];
+      }
+    }
   }
 };
 
@@ -191,19 +289,7 @@ Synthesizer::Synthesizer(const SynthOptions& options) : impl_(std::make_unique<I
   m.meta.streams = {true, true, true, true, true};
   for (int i = 0; i < options.people; ++i) m.looks.push_back(synth::make_look(options.seed, i, options.people));
   m.scripts = make_scripts(options);
-  // Kinect gives a body a new tracking id each time it comes into view: count entries per frame once.
-  for (int i = 0; i < options.people; ++i) {
-    std::vector<int> counts;
-    bool was = false;
-    int entries = 0;
-    for (int k = 0; k < options.frames; ++k) {
-      const bool now = m.in_view(i, k);
-      if (now && !was) ++entries;
-      was = now;
-      counts.push_back(now ? entries : -entries);  // negative: out of view
-    }
-    m.entries.push_back(counts);
-  }
+  m.assign_slots();
   const cv::Vec3d t = m.meta.depth_to_color.translation;
   m.color_target.k = m.meta.color;
   m.color_target.offset = cv::Vec3f(t);
@@ -233,10 +319,9 @@ RgbdFrame Synthesizer::render(int index) {
 
   std::vector<synth::PersonModel> models;
   for (int i = 0; i < n; ++i)
-    models.push_back(synth::build_person(m.looks[static_cast<size_t>(i)],
-                                         pose_at(m.scripts[static_cast<size_t>(i)], m.time_of(index), m.looks[static_cast<size_t>(i)].height)));
+    models.push_back(synth::build_person(m.looks[static_cast<size_t>(i)], m.pose(i, index)));
 
-  // Depth camera: z, labels and coverage (for the visible fraction).
+  // Depth camera: z, labels (identities) and coverage (for the visible fraction).
   synth::Target& dt = m.depth_target;
   m.room_depth_z.copyTo(dt.z);
   dt.label.setTo(kNoBody);
@@ -259,13 +344,13 @@ RgbdFrame Synthesizer::render(int index) {
   // Sensor effects: noise growing with distance (sigma 1 mm + 0.6 mm m^-2 z^2), dropouts far away, at
   // depth edges (mixed pixels) and in the dark corners of a Kinect v2 depth image; no body where no depth.
   f.depth.create(h, w, CV_16U);
-  f.body_index = dt.label.clone();
+  cv::Mat people = dt.label.clone();  // identity per pixel; the body index shows slots
   const uint64_t frame_key = (o.seed << 20) ^ static_cast<uint64_t>(index);
   for (int v = 0; v < h; ++v) {
     const float* z = dt.z.ptr<float>(v);
     const float* below = dt.z.ptr<float>(std::min(v + 1, h - 1));
     uint16_t* out = f.depth.ptr<uint16_t>(v);
-    uint8_t* label = f.body_index.ptr<uint8_t>(v);
+    uint8_t* label = people.ptr<uint8_t>(v);
     const double ry = (v - m.meta.depth.cy) / (h / 2.0);
     for (int u = 0; u < w; ++u) {
       const uint32_t r = synth::hash32(frame_key * 0x9E3779B97F4A7C15ULL + static_cast<uint64_t>(v * w + u));
@@ -285,6 +370,13 @@ RgbdFrame Synthesizer::render(int index) {
     }
   }
 
+  cv::Mat slot_of(1, 256, CV_8U, cv::Scalar(kNoBody));  // untracked people stay out of the body index
+  for (int i = 0; i < n; ++i) {
+    const int slot = m.slots[static_cast<size_t>(i)][static_cast<size_t>(index)];
+    if (slot >= 0) slot_of.at<uint8_t>(i) = static_cast<uint8_t>(slot);
+  }
+  cv::LUT(people, slot_of, f.body_index);
+
   // Bodies and truth.
   FrameTruth truth;
   for (int i = 0; i < n; ++i) {
@@ -296,11 +388,12 @@ RgbdFrame Synthesizer::render(int index) {
     PersonTruth t;
     t.identity = i;
     t.tracking_id = static_cast<uint64_t>(1000 + 100 * i + std::max(entries, 1) - 1);
-    const cv::Mat mine = f.body_index == i;
+    const int slot = m.slots[static_cast<size_t>(i)][static_cast<size_t>(index)];
+    const cv::Mat mine = people == i;
     t.visible_pixels = cv::countNonZero(mine);
     t.depth_box = t.visible_pixels ? cv::boundingRect(mine) : cv::Rect();
     t.visible_fraction = covered[static_cast<size_t>(i)] ? std::min(1.0, static_cast<double>(t.visible_pixels) / covered[static_cast<size_t>(i)]) : 0.0;
-    t.body_index = (was && t.visible_pixels > 0) ? i : -1;
+    t.body_index = (was && t.visible_pixels > 0) ? slot : -1;
     const cv::Matx33d& r = model.body_to_camera;  // forward = R (0, 0, -1) = (-r02, -r22)
     t.yaw_deg = yaw_towards(-r(0, 2), -r(2, 2));
     if (t.yaw_deg <= -180) t.yaw_deg += 360;
@@ -315,7 +408,7 @@ RgbdFrame Synthesizer::render(int index) {
     if (t.body_index < 0 || t.visible_pixels < 100) continue;  // Kinect would not track this body
     Body body;
     body.tracking_id = t.tracking_id;
-    body.index = i;
+    body.index = slot;
     for (int j = 0; j < kJointCount; ++j) {
       BodyJoint& bj = body.joints[static_cast<size_t>(j)];
       bj.position = model.joints[static_cast<size_t>(j)];
@@ -324,7 +417,7 @@ RgbdFrame Synthesizer::render(int index) {
       const int pu = px ? static_cast<int>(std::lround(px->x)) : -1, pv = px ? static_cast<int>(std::lround(px->y)) : -1;
       const bool inside = pu >= 0 && pu < w && pv >= 0 && pv < h;
       // Tracked when the joint's pixel shows this body near the joint's depth, inferred otherwise.
-      bj.tracking_state = !inside ? 0 : (f.body_index.at<uint8_t>(pv, pu) == i || std::abs(dt.z.at<float>(pv, pu) - bj.position[2]) < 0.15) ? 2 : 1;
+      bj.tracking_state = !inside ? 0 : (people.at<uint8_t>(pv, pu) == i || std::abs(dt.z.at<float>(pv, pu) - bj.position[2]) < 0.15) ? 2 : 1;
     }
     f.bodies.push_back(body);
   }

@@ -20,17 +20,27 @@
 
 namespace bodyrec {
 
+// Kinect tracks at most kMaxBodies (6) people at once: body-index slots 0..5 go to people as they come into
+// the depth camera's view (the lowest free slot, kept until they are wholly out of view; a freed slot may go
+// to someone else). A person in view while all slots are taken is not tracked (no body, 255 in the body
+// index, truth body_index -1) until a slot frees.
+constexpr int kMaxSynthPeople = 8;
+
 struct SynthOptions {
-  int people = 2;                    // 1..6 (Kinect's body limit)
+  int people = 2;                    // 1..kMaxSynthPeople (at most 6 tracked at once)
   uint64_t seed = 1;                 // everything random (looks, paths, noise) derives from it
   int frames = 150;                  // the scenario is stretched over this many frames
-  std::string scenario = "walk-turn";  // walk-turn, cross, group, reenter
+  std::string scenario = "walk-turn";  // walk-turn, cross, group, reenter, visits
   int color_width = 960, color_height = 540;  // depth is always Kinect v2's 512x424
   // Throws UsageError on values out of range or an unknown scenario.
   void check() const;
 };
 
 const std::vector<std::string>& synth_scenarios();
+
+// Frames that give `scenario` with `people` a natural pace at 30 fps: 150, except "visits" (every person
+// comes twice, a visit lasting about 5 s): 450 for 1-4 people, growing to 800 for 8.
+int synth_recommended_frames(const std::string& scenario, int people);
 
 class Synthesizer {
  public:

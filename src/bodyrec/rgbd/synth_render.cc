@@ -50,24 +50,42 @@ inline float hit(const Primitive& p, const cv::Vec3f& d, const cv::Vec3f& a, con
   return t;
 }
 
+// Pixels a primitive may cover: the projected end points widened by the radius at the nearest depth,
+// clipped to the image grown by `pad`. False when the primitive is behind or too close to the camera.
+bool screen_box(const Primitive& p, const Intrinsics& k, const cv::Vec3f& offset, int pad, int& u0, int& u1, int& v0,
+                int& v1) {
+  const float fx = static_cast<float>(k.fx), fy = static_cast<float>(k.fy), cx = static_cast<float>(k.cx),
+              cy = static_cast<float>(k.cy);
+  const cv::Vec3f a = p.a + offset, b = p.b + offset;
+  const float zmin = std::min(a[2], b[2]) - p.r;
+  if (zmin < 0.2f) return false;
+  const float ua = cx + fx * a[0] / a[2], va = cy - fy * a[1] / a[2], ub = cx + fx * b[0] / b[2], vb = cy - fy * b[1] / b[2];
+  const float ru = fx * p.r / zmin + 1, rv = fy * p.r / zmin + 1;
+  u0 = std::max(-pad, static_cast<int>(std::floor(std::min(ua, ub) - ru)));
+  u1 = std::min(k.width - 1 + pad, static_cast<int>(std::ceil(std::max(ua, ub) + ru)));
+  v0 = std::max(-pad, static_cast<int>(std::floor(std::min(va, vb) - rv)));
+  v1 = std::min(k.height - 1 + pad, static_cast<int>(std::ceil(std::max(va, vb) + rv)));
+  return true;
+}
+
 }  // namespace
 
-void draw_person(const Look& look, const PersonModel& model, int slot, Target& tg, cv::Mat* coverage) {
+bool may_cover_image(const PersonModel& model, const Intrinsics& k) {
+  int u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  for (const Primitive& p : model.primitives)
+    if (screen_box(p, k, cv::Vec3f(0, 0, 0), 0, u0, u1, v0, v1) && u0 <= u1 && v0 <= v1) return true;
+  return false;
+}
+
+void draw_person(const Look& look, const PersonModel& model, int label, Target& tg, cv::Mat* coverage) {
   const Intrinsics& k = tg.k;
   const int w = k.width, h = k.height, pad = coverage ? tg.pad : 0;
   const float fx = static_cast<float>(k.fx), fy = static_cast<float>(k.fy), cx = static_cast<float>(k.cx),
               cy = static_cast<float>(k.cy);
   for (const Primitive& p : model.primitives) {
     const cv::Vec3f a = p.a + tg.offset, b = p.b + tg.offset;
-    const float zmin = std::min(a[2], b[2]) - p.r;
-    if (zmin < 0.2f) continue;  // behind or too close to the camera
-    // Screen box: the projected end points widened by the radius at the nearest depth.
-    const float ua = cx + fx * a[0] / a[2], va = cy - fy * a[1] / a[2], ub = cx + fx * b[0] / b[2], vb = cy - fy * b[1] / b[2];
-    const float ru = fx * p.r / zmin + 1, rv = fy * p.r / zmin + 1;
-    const int u0 = std::max(-pad, static_cast<int>(std::floor(std::min(ua, ub) - ru)));
-    const int u1 = std::min(w - 1 + pad, static_cast<int>(std::ceil(std::max(ua, ub) + ru)));
-    const int v0 = std::max(-pad, static_cast<int>(std::floor(std::min(va, vb) - rv)));
-    const int v1 = std::min(h - 1 + pad, static_cast<int>(std::ceil(std::max(va, vb) + rv)));
+    int u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    if (!screen_box(p, k, tg.offset, pad, u0, u1, v0, v1)) continue;  // behind or too close to the camera
     for (int v = v0; v <= v1; ++v) {
       const bool row_in = v >= 0 && v < h;
       if (!row_in && !coverage) continue;
@@ -83,7 +101,7 @@ void draw_person(const Look& look, const PersonModel& model, int slot, Target& t
         if (coverage) coverage->at<uint8_t>(v + pad, u + pad) = 1;
         if (!in || t >= zrow[u]) continue;
         zrow[u] = t;
-        if (!tg.label.empty()) tg.label.at<uint8_t>(v, u) = static_cast<uint8_t>(slot);
+        if (!tg.label.empty()) tg.label.at<uint8_t>(v, u) = static_cast<uint8_t>(label);
         if (!tg.color.empty()) {
           const cv::Vec3f c = shade(look, model, p.material, d * t - tg.offset, n);
           tg.color.at<cv::Vec3b>(v, u) = cv::Vec3b(cv::saturate_cast<uint8_t>(c[0]), cv::saturate_cast<uint8_t>(c[1]),

@@ -1,5 +1,7 @@
 // Synthetic people: determinism, and ground truth that agrees with the images it describes.
 #include <cmath>
+#include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -126,8 +128,110 @@ TEST(Synth, PeopleOfOneRecordingLookDifferent) {
     for (size_t j = i + 1; j < 4; ++j) EXPECT_NE(f.truth->people[i].top_bgr, f.truth->people[j].top_bgr);
 }
 
+// FNV-1a over the frame's images and the truth that drives tracking: a fingerprint of the output.
+uint64_t digest(const RgbdFrame& f) {
+  uint64_t h = 1469598103934665603ULL;
+  const auto add = [&](const void* data, size_t size) {
+    for (size_t i = 0; i < size; ++i) h = (h ^ static_cast<const uint8_t*>(data)[i]) * 1099511628211ULL;
+  };
+  for (const cv::Mat* m : {&f.color, &f.depth, &f.body_index}) add(m->data, m->total() * m->elemSize());
+  for (const Body& b : f.bodies) {
+    add(&b.tracking_id, sizeof b.tracking_id);
+    add(&b.index, sizeof b.index);
+  }
+  for (const PersonTruth& t : f.truth->people) {
+    add(&t.tracking_id, sizeof t.tracking_id);
+    add(&t.body_index, sizeof t.body_index);
+    add(&t.visible_pixels, sizeof t.visible_pixels);
+  }
+  return h;
+}
+
+TEST(Synth, SlotsAssignedOnEntryKeepEarlierOutputsUnchanged) {
+  // These fingerprints come from the synthesizer before slots were assigned dynamically (slot = identity);
+  // recordings of every older scenario with 1-6 people were also compared byte for byte (see the commit).
+  Synthesizer s(options("cross", 4, 3, 120));
+  uint64_t all = 0;
+  for (int i = 0; i < 120; i += 7) all = all * 31 + digest(s.render(i));
+  EXPECT_EQ(all, 8621966881531126637ULL);
+}
+
+// Checks one frame against Kinect's rules for bodies and the body index; returns identity -> slot.
+std::map<int, int> check_slots(const RgbdFrame& f) {
+  std::map<int, int> slot_of;
+  std::set<int> slots;
+  EXPECT_LE(f.bodies.size(), 6u) << "frame " << f.index;
+  for (const Body& b : f.bodies) {
+    EXPECT_TRUE(b.index >= 0 && b.index < 6) << "frame " << f.index;
+    EXPECT_TRUE(slots.insert(b.index).second) << "slot " << b.index << " twice in frame " << f.index;
+  }
+  int labelled = 0;
+  for (const PersonTruth& t : f.truth->people) {
+    if (t.body_index < 0) continue;
+    slot_of[t.identity] = t.body_index;
+    EXPECT_EQ(cv::countNonZero(f.body_index == t.body_index), t.visible_pixels) << "frame " << f.index;
+    labelled += t.visible_pixels;
+    for (const Body& b : f.bodies)
+      if (b.tracking_id == t.tracking_id) {
+        EXPECT_EQ(b.index, t.body_index) << "frame " << f.index;
+      }
+  }
+  std::set<int> truth_slots;
+  for (const auto& [id, slot] : slot_of) EXPECT_TRUE(truth_slots.insert(slot).second) << "frame " << f.index;
+  double top = 0;
+  cv::Mat labels;
+  f.body_index.copyTo(labels);
+  labels.setTo(0, f.body_index == kNoBody);
+  cv::minMaxLoc(labels, nullptr, &top);
+  EXPECT_LT(top, 6) << "frame " << f.index;  // body index holds slots 0..5 and 255 only
+  EXPECT_GE(cv::countNonZero(f.body_index != kNoBody), labelled);
+  return slot_of;
+}
+
+TEST(Synth, VisitsOfEightPeopleComeBackWithNewIdsAndShareSixSlots) {
+  const int frames = 300;
+  Synthesizer s(options("visits", 8, 1, frames));
+  std::map<int, std::set<uint64_t>> ids;       // identity -> tracking ids while tracked
+  std::map<int, std::set<int>> holders;        // slot -> identities that held it
+  int busy = 0, sampled = 0;
+  for (int i = 0; i < frames; i += 2, ++sampled) {
+    const RgbdFrame f = s.render(i);
+    ASSERT_EQ(f.truth->people.size(), 8u);
+    for (const auto& [id, slot] : check_slots(f)) holders[slot].insert(id);
+    int tracked = 0;
+    for (const PersonTruth& t : f.truth->people)
+      if (t.body_index >= 0) {
+        ids[t.identity].insert(t.tracking_id);
+        ++tracked;
+      }
+    busy += tracked >= 2 && tracked <= 4;
+  }
+  for (int p = 0; p < 8; ++p) EXPECT_GE(ids[p].size(), 2u) << "person " << p;
+  size_t most = 0;
+  for (const auto& [slot, people] : holders) most = std::max(most, people.size());
+  EXPECT_GE(most, 2u);  // a freed slot went to someone else
+  EXPECT_GT(busy, sampled * 7 / 10) << "two to four people in view most of the time";
+  // Same options, same frame, in any order.
+  Synthesizer again(options("visits", 8, 1, frames));
+  again.render(250);
+  EXPECT_EQ(digest(again.render(120)), digest(s.render(120)));
+}
+
+TEST(Synth, ASeventhPersonInViewIsNotTracked) {
+  // walk-turn with 8 people: in the middle everyone turns in the room; only 6 can have a body.
+  Synthesizer s(options("walk-turn", 8, 2, 60));
+  const RgbdFrame f = s.render(36);
+  check_slots(f);
+  EXPECT_EQ(f.bodies.size(), 6u);
+  int untracked = 0;
+  for (const PersonTruth& t : f.truth->people)
+    if (t.body_index < 0 && std::abs(t.position[0]) < 1.5 && t.visible_pixels > 500) ++untracked;
+  EXPECT_EQ(untracked, 2);
+}
+
 TEST(Synth, BadOptionsAreUsageErrors) {
-  EXPECT_THROW(options("walk-turn", 7, 1, 10).check(), UsageError);
+  EXPECT_NO_THROW(options("visits", 8, 1, 10).check());
+  EXPECT_THROW(options("walk-turn", 9, 1, 10).check(), UsageError);
   EXPECT_THROW(options("dance", 1, 1, 10).check(), UsageError);
   EXPECT_THROW(options("cross", 1, 1, 0).check(), UsageError);
   EXPECT_THROW({ Synthesizer s(options("cross", 0, 1, 10)); }, UsageError);
