@@ -52,13 +52,16 @@ struct EvalReidStreamCommand {
         ms += f.ms_orient + f.ms_scan + f.ms_reid;
       }
       if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
-      if (!f.frame.truth) return;
-      any_truth = true;
-      for (size_t i = 0; i < f.bodies.size(); ++i) {
-        const OrientedBody& b = f.bodies[i];
-        if (b.truth < 0) continue;
-        counter.add(f.frame.truth->people[static_cast<size_t>(b.truth)].identity, b.key, f.step.identities[i].user);
+      if (f.frame.truth) {
+        any_truth = true;
+        for (size_t i = 0; i < f.bodies.size(); ++i) {
+          const OrientedBody& b = f.bodies[i];
+          if (b.truth >= 0)
+            counter.add(f.frame.truth->people[static_cast<size_t>(b.truth)].identity, b.key, f.step.identities[i].user);
+        }
       }
+      for (const ReidEvent& e : f.step.events)
+        if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) counter.assign(e.track, e.user);
     });
     if (!any_truth) throw InputError(input + ": the recording has no truth stream (make one with bodyrec synth)");
     const ReidStreamScore s = counter.score();

@@ -31,6 +31,11 @@ void ReidStreamCounter::add(int identity, uint64_t track, std::optional<int64_t>
   ++user_frames_[*user][identity];
 }
 
+void ReidStreamCounter::assign(uint64_t track, int64_t user) {
+  const auto it = tracks_.find(track);
+  if (it != tracks_.end()) it->second.user = user;  // tracks never seen with a true person stay out
+}
+
 ReidStreamScore ReidStreamCounter::score() const {
   ReidStreamScore s;
   s.frames = frames_;

@@ -29,6 +29,9 @@ class ReidStreamCounter {
  public:
   // One body in one frame: its true identity, its track and the user assigned to it (none yet).
   void add(int identity, uint64_t track, std::optional<int64_t> user);
+  // A decision seen as an event (enrolled / recognised) for a track: counts for splits and merges even
+  // when the track never showed the user in a frame (decided as it left).
+  void assign(uint64_t track, int64_t user);
   ReidStreamScore score() const;
 
  private:

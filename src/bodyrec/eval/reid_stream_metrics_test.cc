@@ -51,6 +51,18 @@ TEST(ReidStreamMetrics, TwoPeopleGivenOneUserIsAMergeAndTheMinorityIsWrong) {
   EXPECT_DOUBLE_EQ(s.accuracy, 10.0 / 16.0);
 }
 
+TEST(ReidStreamMetrics, AUserDecidedAsTheTrackLeftStillCountsAsASplit) {
+  ReidStreamCounter c;
+  for (int f = 0; f < 10; ++f) c.add(0, 100, 1);
+  for (int f = 0; f < 5; ++f) c.add(0, 101, std::nullopt);  // back, undecided in every frame
+  c.assign(101, 2);                                          // enrolled as it left
+  c.assign(999, 3);                                          // a track with no true person: ignored
+  const ReidStreamScore s = c.score();
+  EXPECT_EQ(s.splits, 1);
+  EXPECT_EQ(s.tracks, 2);
+  EXPECT_EQ(s.correct, 10);
+}
+
 TEST(ReidStreamMetrics, EmptyRunScoresZero) {
   const ReidStreamScore s = ReidStreamCounter().score();
   EXPECT_EQ(s.frames, 0);

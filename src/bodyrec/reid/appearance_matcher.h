@@ -47,6 +47,8 @@ class AppearanceMatcher {
 //      similarity = -squared distance of the embeddings, threshold from the training pairs; without a
 //      model it is the unlearned fallback "lomo".
 //  "lomo": the same features, similarity = -squared Euclidean distance, threshold measured on VIPeR.
+//  "stripes": compact colour histograms in horizontal stripes (stripe_features.h), no model; the online
+//      default of `bodyrec reid` (4 KB per scan), threshold set on synthetic recordings.
 //  "kaze": the thesis's KAZE score (kaze_matcher.h), threshold 10.
 // Throws UsageError for an unknown name, InputError for an unreadable model.
 std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");

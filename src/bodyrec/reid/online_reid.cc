@@ -48,6 +48,7 @@ void OnlineReidOptions::check() const {
   if (!(update_gain >= 1)) throw UsageError("reid: update gain must be at least 1");
   if (update_every < 1) throw UsageError("reid: update_every must be at least 1");
   if (verify_every < 1 || strikes < 1) throw UsageError("reid: verify_every and strikes must be at least 1");
+  if (!(verify_quality >= 0 && verify_quality <= 1)) throw UsageError("reid: verify_quality must be within 0..1");
   if (!(left_after_s >= 0)) throw UsageError("reid: --left-after must not be negative");
   if (std::isinf(threshold)) throw UsageError("reid: --threshold must be finite");
   if (!(margin >= 0)) throw UsageError("reid: --margin must not be negative");
@@ -88,7 +89,7 @@ std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe) const
       for (auto* m : {is_near ? &best_near : nullptr, &best_any}) {
         if (!m) continue;
         auto it = m->find(e.user);
-        if (it == m->end() || s > it->second.similarity) (*m)[e.user] = Score{e.user, s, v};
+        if (it == m->end() || s > it->second.similarity) (*m)[e.user] = Score{e.user, s, v, m == &best_near};
       }
     }
   }
@@ -230,7 +231,10 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
         log(events.back());
       }
     }
-  } else if (2 * for_new > n || (forced && for_new >= most)) {
+  } else if (2 * for_new > n || (forced && for_new > 0 && for_new >= most) ||
+             track.frames >= 3 * options_.max_wait_frames) {
+    // (Scans that all fall between "same" and "someone else" wait three times longer before enrolling:
+    // that is more often a known person half hidden or turned than a new one.)
     enrol(key, track, events);
   } else {
     return;  // undecided (too close to call, or contradicting scans): collect more
@@ -252,12 +256,23 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   std::optional<Probe> probe = describe(body);
   if (!probe) return;
   ++described;
-  double mine = -std::numeric_limits<double>::infinity();
-  for (const Score& s : score_users(*probe))
-    if (s.user == user) mine = s.similarity;
+  std::optional<Score> mine;
+  double best_other = -std::numeric_limits<double>::infinity();
+  for (const Score& s : score_users(*probe)) {
+    if (s.user == user) mine = s;
+    else best_other = std::max(best_other, s.similarity);
+  }
+  const double clear_miss = threshold_ - options_.new_gap * std::abs(threshold_);
   if (verify) {
     track.last_verify = frame_;
-    track.strikes = mine < threshold_ - options_.new_gap * std::abs(threshold_) ? track.strikes + 1 : 0;
+    // Only a comparison with the same or a complementary view can say "not this user": the other
+    // side of a person may look different.
+    if (debug_)
+      std::fprintf(stderr, "verify track %llu user %lld view %s quality %.2f: %s %.3f (%s)\n", static_cast<unsigned long long>(key),
+                   static_cast<long long>(user), view_name(view), probe->quality, mine && mine->near ? "near" : "far",
+                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-");
+    if (mine && mine->near && probe->quality >= options_.verify_quality)
+      track.strikes = mine->similarity < clear_miss ? track.strikes + 1 : 0;
     if (track.strikes >= options_.strikes) {
       // Not this user any more: release it and decide the body afresh from this scan on.
       events.push_back({ReidEventKind::kLeft, user, key, std::nullopt, std::nullopt});
@@ -269,8 +284,11 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
       return;
     }
   }
-  // The scan must still look like this user (not like someone who stepped in front).
-  if (!improves || !(mine > threshold_)) return;
+  // A known view must still match this user (not someone who stepped in front); a new view must not
+  // look like anybody else.
+  if (!improves || track.strikes > 0 || !mine) return;
+  const bool ok = mine->near ? mine->similarity > threshold_ : best_other <= threshold_ && mine->similarity > clear_miss;
+  if (!ok) return;
   ++gallery_version_;
   if (gallery_.put_scan(user, gallery_scan(*probe)) == PutResult::kInserted) {
     events.push_back({ReidEventKind::kViewAdded, user, key, view, std::nullopt});

@@ -10,12 +10,13 @@
 //    when even the best user is well below the threshold (new_gap), and abstains otherwise. Once `decide_after` scans are in, the track is recognised
 //    as the user with a majority of the votes, or enrolled as a new user (best scan per view) when most
 //    scans say "new"; otherwise it collects more, and after max_wait_frames it is decided by the larger
-//    side. Users held by another track in the same frame are never candidates: two bodies in one frame
+//    side (when no scan voted at all, it waits up to three times as long, then enrols). Users held by another track in the same frame are never candidates: two bodies in one frame
 //    are two people (no merges).
 //  - assigned: a scan of a view the user lacks, or clearly better than the stored one, is checked against
-//    the user (it must still match) and stored: `view_added` or a silent replacement. Every few frames
-//    the body is checked against its user; a track that keeps failing (it jumped to someone else) is
-//    released (`left` for that user) and decided afresh.
+//    the user and stored (`view_added` or a silent replacement): it must match the user when the user has
+//    that view or a complementary one, and match nobody else when the view is new. Every few frames the
+//    body is checked against its user's scans of that view or a complementary one; a track that keeps
+//    failing (it jumped to someone else) is released (`left` for that user) and decided afresh.
 //  - a track unseen for left_after_s has left (`left`); a pending track that leaves with scans is decided
 //    first, so a short visit still enrols.
 // A user who comes back gets a new track and is recognised again from the gallery.
@@ -51,12 +52,13 @@ struct OnlineReidOptions {
   double min_view_confidence = 0.2;  // bodies whose view is less certain give no scan
   double update_gain = 1.15;    // an assigned track replaces a stored scan when quality > gain x stored
   int update_every = 5;         // an assigned track describes at most one scan per this many frames
-  double left_after_s = 0.5;    // a track unseen this long has left
+  double left_after_s = 1.0;    // a track unseen this long has left (a sensor keeps ids through short occlusions)
   // An assigned track checks every this many frames that it still shows its user; after `strikes`
   // checks in a row that clearly fail (below threshold - new_gap), the user is released and the track
   // decided afresh (a sensor's or segmenter's track that jumped to another person).
   int verify_every = 10;
   int strikes = 2;
+  double verify_quality = 0.6;  // only scans this good can strike (occluded bodies look like someone else)
   // Similarity above which a scan is called the user's; NaN = the matcher's threshold().
   double threshold = std::numeric_limits<double>::quiet_NaN();
   // A scan votes for its best user only when it beats the next user by this share of |threshold|.
@@ -129,6 +131,7 @@ class OnlineReid {
     UserId user = 0;
     double similarity = 0;
     View view = View::F;
+    bool near = false;  // from the probe's own or a complementary view (else the user has none of those)
   };
   struct Probe {
     View view;

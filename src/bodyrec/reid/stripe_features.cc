@@ -1,6 +1,7 @@
 #include "bodyrec/reid/stripe_features.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include <opencv2/imgproc.hpp>
 
@@ -9,8 +10,7 @@
 namespace bodyrec {
 
 void StripeOptions::check() const {
-  if (width < 4 || height < 8) throw UsageError("stripe features: size must be at least 4x8");
-  if (stripes < 1 || stripes > height) throw UsageError("stripe features: stripes must be 1..height");
+  if (stripes < 1 || stripes > 64) throw UsageError("stripe features: stripes must be 1..64");
   if (hue_bins < 1 || sat_bins < 1 || val_bins < 1 || hue_bins * sat_bins * val_bins > 4096)
     throw UsageError("stripe features: bins must be positive and at most 4096 per stripe");
 }
@@ -21,18 +21,19 @@ std::vector<float> stripe_features(const PersonImage& image, const StripeOptions
   o.check();
   CV_Assert(image.bgr.type() == CV_8UC3 && !image.bgr.empty());
   CV_Assert(image.mask.empty() || (image.mask.type() == CV_8U && image.mask.size() == image.bgr.size()));
-  cv::Mat bgr, mask, hsv;
-  cv::resize(image.bgr, bgr, cv::Size(o.width, o.height), 0, 0, cv::INTER_AREA);
-  if (!image.mask.empty()) cv::resize(image.mask, mask, bgr.size(), 0, 0, cv::INTER_NEAREST);
-  cv::cvtColor(bgr, hsv, cv::COLOR_BGR2HSV);  // H 0..179
+  // Full resolution, no resampling: a resized image would blend background into the body's edge.
+  const cv::Mat& mask = image.mask;
+  cv::Mat hsv;
+  cv::cvtColor(image.bgr, hsv, cv::COLOR_BGR2HSV);  // H 0..179
+  const int rows = hsv.rows, cols = hsv.cols;
   const int per_stripe = o.hue_bins * o.sat_bins * o.val_bins;
   std::vector<float> f(static_cast<size_t>(stripe_length(o)), 0.f);
-  for (int y = 0; y < o.height; ++y) {
-    const int stripe = y * o.stripes / o.height;
+  for (int y = 0; y < rows; ++y) {
+    const int stripe = static_cast<int>(static_cast<int64_t>(y) * o.stripes / rows);
     float* h = f.data() + static_cast<size_t>(stripe) * per_stripe;
     const cv::Vec3b* p = hsv.ptr<cv::Vec3b>(y);
     const uint8_t* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(y);
-    for (int x = 0; x < o.width; ++x) {
+    for (int x = 0; x < cols; ++x) {
       if (m && !m[x]) continue;
       const int hb = std::min(p[x][0] * o.hue_bins / 180, o.hue_bins - 1);
       const int sb = p[x][1] * o.sat_bins / 256, vb = p[x][2] * o.val_bins / 256;

@@ -1,6 +1,6 @@
 // Compact whole-body colour descriptor for online re-identification without a learned model: the
-// body's pixels (mask) resampled to a fixed size, cut into horizontal stripes, one joint HSV histogram
-// per stripe, square-rooted (Hellinger), so that the squared Euclidean distance of two descriptors is
+// image (a tight crop of the body) cut into horizontal stripes of equal height, one joint HSV histogram
+// of the body's pixels (mask) per stripe at full resolution, normalised and square-rooted (Hellinger), so that the squared Euclidean distance of two descriptors is
 // the sum of the stripes' squared Hellinger distances (0..2 each). About 4 KB per scan, where LOMO x 2
 // is 216 KB: a gallery of 100 users x 8 views stays under 4 MB in memory.
 #pragma once
@@ -12,7 +12,6 @@
 namespace bodyrec {
 
 struct StripeOptions {
-  int width = 32, height = 96;  // resampling size
   int stripes = 8;
   int hue_bins = 8, sat_bins = 4, val_bins = 4;
   void check() const;  // UsageError naming the bad field
