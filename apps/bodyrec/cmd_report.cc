@@ -5,6 +5,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/frame_source.h"
+#include "bodyrec/report/gallery_users.h"
 #include "bodyrec/report/report.h"
 #include "command.h"
 
@@ -51,13 +52,16 @@ struct ReportCommand {
   }
 
   void run() const {
-    if (!gallery.empty())
-      throw UsageError("--gallery is not available yet: the gallery store is not wired into `report`");
     report::ReportInput input;
     input.run = report::read_run(run_path);
     for (const auto& e : evals) input.evals.push_back(report::read_eval(e));
     input.source = source;
     input.images = !no_images;
+    // Read-only: a bad gallery fails here, before anything is written.
+    if (!gallery.empty()) {
+      input.users = report::read_gallery_users(gallery, input.images);
+      input.have_gallery = true;
+    }
     const std::time_t now = std::time(nullptr);
     char stamp[32];
     std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
@@ -67,9 +71,10 @@ struct ReportCommand {
     const std::string page = report::render_report(input);
     std::ofstream file(out, std::ios::binary);
     if (!file || !(file << page) || !file.flush()) throw ProcessingError(out + ": cannot write the report");
-    std::printf("bodyrec: wrote %s (%zu KB; %s run, %d frames, %zu evaluations, %zu key frames)\n", out.c_str(),
+    std::printf("bodyrec: wrote %s (%zu KB; %s run, %d frames, %zu evaluations, %zu key frames%s)\n", out.c_str(),
                 page.size() / 1024, report::to_string(input.run.kind), input.run.frame_count(), input.evals.size(),
-                input.key_frames.size());
+                input.key_frames.size(),
+                input.have_gallery ? (", " + std::to_string(input.users.size()) + " gallery users").c_str() : "");
   }
 };
 
@@ -79,15 +84,19 @@ void add(CLI::App& app) {
   sub->footer(
       "The page embeds everything (inline CSS and SVG plots, JPEG images as data URIs): no scripts, nothing\n"
       "loaded from the network. It shows images of people unless --no-images is given.\n"
+      "--gallery adds one row per gallery user: id, label, first/last seen (UTC), the 8 partial-scan views\n"
+      "(F FR FL SR SL B BR BL; dashed = no scan, hatched = scan without an image) and, for users this run has\n"
+      "no events for, the gallery's own events. The gallery is only read.\n"
       "Example: bodyrec report out/groups.jsonl --source /usr/share/doc/opencv-doc/examples/data/vtest.avi "
       "--out out/report.html\n"
-      "         bodyrec report run.jsonl --eval viper.json --eval hotel.json --out report.html");
+      "         bodyrec report run.jsonl --eval viper.json --eval hotel.json --out report.html\n"
+      "         bodyrec report reid.jsonl --gallery gallery.db --out report.html");
   sub->add_option("run", command->run_path, "Run JSON lines (bodyrec groups --jsonl, bodyrec reid)")->required();
   sub->add_option("--source", command->source, "The run's video: key frames are decoded and annotated from it");
   sub->add_option("--eval", command->evals,
                   "File holding the --json output of an eval command (kind from its keys); repeatable. Per-person "
                   "landmark errors (eval landmarks --per-person) give a histogram");
-  sub->add_option("--gallery", command->gallery, "Gallery database: users and their 8 views (not available yet)");
+  sub->add_option("--gallery", command->gallery, "Gallery database (read-only): a row per user with their 8 views, first/last seen, events");
   sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(CLI::Range(0, 12));
   sub->add_flag("--no-images", command->no_images, "Leave every image of a person out of the page");
   sub->add_option("--out", command->out, "The HTML file to write")->required();

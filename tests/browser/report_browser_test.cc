@@ -1,10 +1,14 @@
-// The report in a real browser: headless Chromium renders the page to a PNG and we check that the plots
-// and the embedded key frames are on it. Skips with a message when `chromium` is not installed.
+// The report in a real browser: headless Chromium renders the page to a PNG and we check that the plots,
+// the embedded key frames and the gallery's scans are on it. Skips with a message when `chromium` is not
+// installed.
+#include <algorithm>
 #include <cstdlib>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "report_fixture.h"
 #include "test_support.h"
@@ -37,6 +41,28 @@ int leader_blue_pixels(const cv::Mat& image) {
   return cv::countNonZero(mask);
 }
 
+// Mask of pixels close to the gallery scans' cyan (BGR 255, 255, 0).
+cv::Mat cyan_mask(const cv::Mat& image) {
+  cv::Mat mask;
+  cv::inRange(image, cv::Scalar(200, 200, 0), cv::Scalar(255, 255, 70), mask);
+  return mask;
+}
+
+// Bounding boxes of the cyan regions of at least `min_area` pixels, top to bottom, left to right.
+std::vector<cv::Rect> cyan_blobs(const cv::Mat& image, int min_area) {
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(cyan_mask(image), labels, stats, centroids, 8);
+  std::vector<cv::Rect> blobs;
+  for (int i = 1; i < n; ++i)
+    if (stats.at<int>(i, cv::CC_STAT_AREA) >= min_area)
+      blobs.emplace_back(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP),
+                         stats.at<int>(i, cv::CC_STAT_WIDTH), stats.at<int>(i, cv::CC_STAT_HEIGHT));
+  std::sort(blobs.begin(), blobs.end(), [](const cv::Rect& a, const cv::Rect& b) {
+    return std::make_pair(a.y / 20, a.x) < std::make_pair(b.y / 20, b.x);
+  });
+  return blobs;
+}
+
 TEST(ReportBrowser, ChromiumRendersPlotsAndKeyFrames) {
   if (!have_chromium()) GTEST_SKIP() << "chromium not installed (scripts/install-deps installs it when it can)";
   TempDir dir;
@@ -66,6 +92,44 @@ TEST(ReportBrowser, ChromiumRendersPlotsAndKeyFrames) {
   ASSERT_FALSE(hidden_shot.empty());
   EXPECT_EQ(magenta_pixels(hidden_shot), 0);
   EXPECT_GT(leader_blue_pixels(hidden_shot), 2000);
+}
+
+TEST(ReportBrowser, ChromiumRendersGalleryRows) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium not installed (scripts/install-deps installs it when it can)";
+  TempDir dir;
+  const RunResult r = report_with_gallery(dir, "report.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat shot = screenshot(dir / "report.html", dir / "shot.png");
+  ASSERT_FALSE(shot.empty()) << "chromium did not write a screenshot";
+  if (const char* keep = std::getenv("BODYREC_KEEP_GALLERY_SCREENSHOT")) cv::imwrite(keep, shot);
+  // The 4 scans (cyan bodies, each filling most of a 1:2 slot) are drawn: alice's F, SR, B in one row
+  // left to right, bob's BL below; all thumbnails the same height.
+  const auto blobs = cyan_blobs(shot, 3000);
+  ASSERT_EQ(blobs.size(), 4u) << "cyan pixels: " << cv::countNonZero(cyan_mask(shot));
+  for (const auto& b : blobs) {
+    EXPECT_GT(b.height, 120) << b;
+    EXPECT_NEAR(b.height, blobs[0].height, 3) << b;
+    EXPECT_NEAR(b.height, 2.2 * b.width, 0.5 * b.width) << b;  // the ellipse's 116 x 52 proportions
+    // Non-blank: the body is cyan and the slot around it is not.
+    const cv::Rect around = (b + cv::Size(16, 16) - cv::Point(8, 8)) & cv::Rect(0, 0, shot.cols, shot.rows);
+    EXPECT_LT(cv::countNonZero(cyan_mask(shot(around))), around.area() * 0.8) << b;
+  }
+  EXPECT_NEAR(blobs[0].y, blobs[2].y, 3);
+  EXPECT_LT(blobs[0].x, blobs[1].x);
+  EXPECT_LT(blobs[1].x, blobs[2].x);
+  EXPECT_GT(blobs[3].y, blobs[0].y + blobs[0].height);
+  // Slot order F FR FL SR SL B BR BL: SR is 3 slots right of F, B 2 more, and bob's BL in the last column.
+  const double step = (blobs[2].x - blobs[0].x) / 5.0;
+  EXPECT_NEAR(blobs[1].x - blobs[0].x, 3 * step, 4);
+  EXPECT_NEAR(blobs[3].x - blobs[0].x, 7 * step, 4);
+
+  const RunResult hidden = report_with_gallery(dir, "hidden.html", {"--no-images"});
+  ASSERT_EQ(hidden.exit_code, 0) << hidden.err;
+  const cv::Mat hidden_shot = screenshot(dir / "hidden.html", dir / "hidden.png");
+  ASSERT_FALSE(hidden_shot.empty());
+  if (const char* keep = std::getenv("BODYREC_KEEP_GALLERY_SCREENSHOT"))
+    cv::imwrite(std::string(keep) + ".no-images.png", hidden_shot);
+  EXPECT_EQ(cv::countNonZero(cyan_mask(hidden_shot)), 0);
 }
 
 }  // namespace

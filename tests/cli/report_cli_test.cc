@@ -1,5 +1,9 @@
 // `bodyrec report` end to end on a small generated groups run: sections, key frames decoded from the
-// video, evaluations, --no-images, and its errors with exit codes.
+// video, evaluations, --no-images, a re-identification run with a gallery, and its errors with exit codes.
+#include <filesystem>
+
+#include <sqlite3.h>
+
 #include <gtest/gtest.h>
 
 #include "report_fixture.h"
@@ -46,6 +50,54 @@ TEST(ReportCommand, WritesOnePageWithKeyFramesAndEvaluations) {
   EXPECT_TRUE(contains(without, "Images left out (--no-images)"));
 }
 
+TEST(ReportCommand, GalleryUsersAreRowsOfEightViews) {
+  TempDir dir;
+  const RunResult r = report_with_gallery(dir, "report.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "re-identification run, 30 frames, 0 evaluations, 0 key frames, 2 gallery users")) << r.out;
+  const std::string page = read_text(dir / "report.html");
+  EXPECT_EQ(count(page, "<section id=\"users\""), 1);
+  EXPECT_EQ(count(page, "<div class=\"user\">"), 2);
+  EXPECT_EQ(count(page, "<figure class=\"view\">"), 16);
+  EXPECT_EQ(count(page, "<img class=\"scan\""), 4);  // alice F, SR, B; bob BL
+  EXPECT_EQ(count(page, "<img class=\"scan\" alt=\"BL scan\" src=\"data:image/jpeg;base64,"), 1);
+  EXPECT_EQ(count(page, "class=\"slot empty\">no scan</div>"), 12);
+  EXPECT_TRUE(contains(page, ">alice</b><span>id 1</span><span>first seen <time>2026-11-20 13:00:00</time></span>"
+                             "<span>last seen <time>2026-11-20 13:05:00</time>"));
+  EXPECT_TRUE(contains(page, ">bob</b><span>id 2</span><span>first seen <time>2026-11-20 13:10:00</time></span>"
+                             "<span>last seen <time>2026-11-20 13:10:00</time>"));
+  // Alice has an event in the run; bob has none, so the gallery's enrolment shows in his row.
+  EXPECT_TRUE(contains(page, "1 event in this run"));
+  EXPECT_EQ(count(page, "class=\"uevent\""), 1);
+  EXPECT_TRUE(contains(page, "enrolled BL<time>11-20 13:10:00</time>"));
+  EXPECT_FALSE(contains(page, "<script"));
+
+  // --no-images: the same rows with placeholders, no pixels.
+  const RunResult hidden = report_with_gallery(dir, "hidden.html", {"--no-images"});
+  ASSERT_EQ(hidden.exit_code, 0) << hidden.err;
+  const std::string without = read_text(dir / "hidden.html");
+  EXPECT_FALSE(contains(without, "data:image"));
+  EXPECT_EQ(count(without, "<div class=\"user\">"), 2);
+  EXPECT_EQ(count(without, "class=\"slot withheld\""), 4);
+  EXPECT_EQ(count(without, "class=\"slot empty\">no scan</div>"), 12);
+
+  // A gallery kept without images (features only): placeholders too.
+  write_gallery(dir / "features.db", false);
+  const RunResult features = run_bodyrec({"report", (dir / "reid.jsonl").string(), "--gallery",
+                                          (dir / "features.db").string(), "--out", (dir / "features.html").string()});
+  ASSERT_EQ(features.exit_code, 0) << features.err;
+  const std::string stored = read_text(dir / "features.html");
+  EXPECT_FALSE(contains(stored, "<img class=\"scan\""));
+  EXPECT_EQ(count(stored, "no image stored</div>"), 4);
+
+  // A groups run takes a gallery too.
+  write_groups_run(dir / "groups.jsonl", 10);
+  const RunResult groups = run_bodyrec({"report", (dir / "groups.jsonl").string(), "--gallery", (dir / "g.db").string(),
+                                        "--out", (dir / "groups.html").string()});
+  ASSERT_EQ(groups.exit_code, 0) << groups.err;
+  EXPECT_EQ(count(read_text(dir / "groups.html"), "class=\"uevent\""), 3);  // every gallery event
+}
+
 TEST(ReportCommand, BadInputsGiveOneLineErrors) {
   TempDir dir;
   write_text(dir / "empty.jsonl", "");
@@ -66,10 +118,28 @@ TEST(ReportCommand, BadInputsGiveOneLineErrors) {
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "odd.json:1: unknown evaluation")) << r.err;
 
+  // Galleries: the store's one-line errors, exit 3, and no report written.
   r = run_bodyrec({"report", (dir / "run.jsonl").string(), "--gallery", (dir / "g.db").string(), "--out",
                    (dir / "r.html").string()});
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_TRUE(contains(r.err, "--gallery is not available yet")) << r.err;
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_EQ(r.err, "bodyrec: error: " + (dir / "g.db").string() + ": gallery not found\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "g.db"));
+  write_text(dir / "notes.db", "a text file, not a gallery\n");
+  r = run_bodyrec({"report", (dir / "run.jsonl").string(), "--gallery", (dir / "notes.db").string(), "--out",
+                   (dir / "r.html").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, (dir / "notes.db").string() + ": not an SQLite database")) << r.err;
+  EXPECT_EQ(count(r.err, "\n"), 1);
+  write_gallery(dir / "newer.db");
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open((dir / "newer.db").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 2", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  r = run_bodyrec({"report", (dir / "run.jsonl").string(), "--gallery", (dir / "newer.db").string(), "--out",
+                   (dir / "r.html").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "newer.db: gallery schema version 2 is newer")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
 
   write_magenta_video(dir / "short.avi", 3);
   r = run_bodyrec({"report", (dir / "run.jsonl").string(), "--source", (dir / "short.avi").string(), "--out",

@@ -1,21 +1,77 @@
 // Re-identification run sections: the gallery's users, what happened when, and who each body was.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
+#include "bodyrec/reid/view.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
 #include "bodyrec/report/svg.h"
+#include "bodyrec/store/gallery.h"
 
 namespace bodyrec::report {
 namespace {
 
-// reid/view.h kAllViews order.
-const char* const kViewNames[8] = {"F", "FR", "FL", "SR", "SL", "B", "BR", "BL"};
-
-std::string seconds(double s) { return fmt(s, 1) + " s"; }
-
 std::string user_colour(const std::optional<int>& user) { return user ? palette(*user) : "#cbd5e1"; }
+
+const std::map<std::string, std::string>& event_colours() {
+  static const std::map<std::string, std::string> colours = {{"enrolled", "#2563eb"},
+                                                             {"recognised", "#16a34a"},
+                                                             {"view_added", "#f59e0b"},
+                                                             {"scan_replaced", "#a855f7"},
+                                                             {"left", "#64748b"}};
+  return colours;
+}
+
+std::string event_colour(const std::string& kind) {
+  const auto it = event_colours().find(kind);
+  return it == event_colours().end() ? "#a855f7" : it->second;
+}
+
+// "2026-11-20 13:05:00" (UTC) from seconds since the Unix epoch.
+std::string utc_text(double unix_seconds) {
+  std::string text = format_utc(from_unix_ms(std::llround(unix_seconds * 1000.0)));
+  std::replace(text.begin(), text.end(), 'T', ' ');
+  if (!text.empty() && text.back() == 'Z') text.pop_back();
+  return text;
+}
+
+// One of the 8 slots: the scan's image, a placeholder for a scan without pixels, or an empty slot.
+std::string view_slot(const cv::Mat& image, bool scanned, bool images, View view) {
+  const std::string name = view_name(view);
+  std::string cell;
+  if (!images && (scanned || !image.empty()))
+    cell = "<div class=\"slot withheld\" title=\"" + name + " scan\">image left out</div>";
+  else if (!image.empty())
+    cell = "<img class=\"scan\" alt=\"" + name + " scan\" src=\"" + jpeg_data_uri(image, 160) + "\">";
+  else if (scanned)
+    cell = "<div class=\"slot withheld\" title=\"" + name + " scan\">no image stored</div>";
+  else
+    cell = "<div class=\"slot empty\">no scan</div>";
+  return "<figure class=\"view\">" + cell + "<figcaption>" + name + "</figcaption></figure>";
+}
+
+// The gallery's events of a user the run does not mention (the most recent ones when there are many).
+std::string gallery_events(const ReportUser& u) {
+  constexpr size_t kShown = 10;
+  if (u.events.empty()) return "<div class=\"uevents note\">no events stored</div>";
+  std::string out = "<div class=\"uevents\"><span class=\"from\">gallery events</span>";
+  const size_t first = u.events.size() > kShown ? u.events.size() - kShown : 0;
+  if (first > 0) out += "<span class=\"more\">" + std::to_string(first) + " earlier…</span>";
+  for (size_t i = first; i < u.events.size(); ++i) {
+    const ReportUserEvent& e = u.events[i];
+    std::string text = e.kind;
+    if (!e.view.empty()) text += " " + e.view;
+    if (e.score) text += " · " + fmt(*e.score, 2);
+    std::string title = utc_text(e.time) + " UTC";
+    if (e.track) title += ", track " + std::to_string(*e.track);
+    if (!e.source.empty()) title += ", " + e.source;
+    out += "<span class=\"uevent\" style=\"border-color:" + event_colour(e.kind) + "\" title=\"" +
+           html_escape(title) + "\">" + html_escape(text) + "<time>" + utc_text(e.time).substr(5) + "</time></span>";
+  }
+  return out + "</div>";
+}
 
 }  // namespace
 
@@ -25,25 +81,28 @@ Section users_section(const ReportInput& input) {
     s.html = "<p class=\"note\">The gallery holds no users.</p>";
     return s;
   }
+  std::map<int, int> run_events;  // user -> events of this run
+  for (const auto& row : input.run.reid)
+    for (const auto& e : row.events)
+      if (e.user) ++run_events[*e.user];
   int scans = 0;
   for (const auto& u : input.users)
-    for (const auto& v : u.views) scans += !v.empty();
-  s.html = "<p>" + std::to_string(input.users.size()) + " users, " + std::to_string(scans) +
-           " partial scans of 8 possible views each (F front, FR/FL front-right/left, SR/SL side, B back, "
-           "BR/BL back-right/left); dashed slots have no scan yet.</p><div class=\"users\">";
+    for (int v = 0; v < kViewCount; ++v) scans += u.scanned[v] || !u.views[v].empty();
+  s.html = "<p>" + std::to_string(input.users.size()) + " users, " + std::to_string(scans) + " partial scans of " +
+           std::to_string(kViewCount) + " possible each (F front, FR/FL front-right/left, SR/SL side right/left, "
+           "B back, BR/BL back-right/left); dashed slots have no scan yet, hatched ones a scan whose image is "
+           "not shown. Times are UTC.</p><div class=\"users\">";
   for (const auto& u : input.users) {
     s.html += "<div class=\"user\"><div class=\"who\"><b style=\"color:" + std::string(palette(u.id)) + "\">" +
               html_escape(u.label.empty() ? "user " + std::to_string(u.id) : u.label) + "</b><span>id " +
-              std::to_string(u.id) + "</span><span>first seen " + seconds(u.first_seen) + "</span><span>last seen " +
-              seconds(u.last_seen) + "</span></div>";
-    for (int v = 0; v < 8; ++v) {
-      const cv::Mat& image = u.views[v];
-      std::string cell;
-      if (image.empty()) cell = "<div class=\"empty\">no scan</div>";
-      else if (!input.images) cell = "<div class=\"empty withheld\">scan (image left out)</div>";
-      else cell = "<img alt=\"" + std::string(kViewNames[v]) + "\" src=\"" + jpeg_data_uri(image, 160) + "\">";
-      s.html += "<figure class=\"view\">" + cell + "<figcaption>" + kViewNames[v] + "</figcaption></figure>";
-    }
+              std::to_string(u.id) + "</span><span>first seen <time>" + utc_text(u.first_seen) +
+              "</time></span><span>last seen <time>" + utc_text(u.last_seen) + "</time></span></div>";
+    for (int v = 0; v < kViewCount; ++v) s.html += view_slot(u.views[v], u.scanned[v], input.images, kAllViews[v]);
+    const auto in_run = run_events.find(u.id);
+    s.html += in_run == run_events.end()
+                  ? gallery_events(u)
+                  : "<div class=\"uevents note\">" + std::to_string(in_run->second) +
+                        (in_run->second == 1 ? " event" : " events") + " in this run: see <a href=\"#events\">Identification events</a></div>";
     s.html += "</div>";
   }
   s.html += "</div>";
@@ -51,12 +110,6 @@ Section users_section(const ReportInput& input) {
 }
 
 namespace {
-
-const std::map<std::string, std::string>& event_colours() {
-  static const std::map<std::string, std::string> colours = {
-      {"enrolled", "#2563eb"}, {"recognised", "#16a34a"}, {"view_added", "#f59e0b"}, {"left", "#64748b"}};
-  return colours;
-}
 
 Section events_section(const RunData& run) {
   Section s{"events", "Identification events", ""};
@@ -85,7 +138,7 @@ Section events_section(const RunData& run) {
   std::vector<std::vector<std::string>> table;
   for (const auto& row : run.reid)
     for (const auto& e : row.events) {
-      const auto colour = event_colours().count(e.kind) ? event_colours().at(e.kind) : "#a855f7";
+      const auto colour = event_colour(e.kind);
       std::string title = e.kind + " frame " + std::to_string(row.frame) + " track " + std::to_string(e.track);
       if (!e.view.empty()) title += " view " + e.view;
       if (e.score) title += " score " + fmt(*e.score, 2);
@@ -97,9 +150,12 @@ Section events_section(const RunData& run) {
                          e.view.empty() ? "–" : e.view, e.score ? fmt(*e.score, 2) : "–"});
     }
   std::vector<std::pair<std::string, std::string>> legend;
-  for (const auto& [kind, colour] : event_colours()) legend.emplace_back(colour, kind);
-  s.html = "<p>" + std::to_string(count) + " events for " + std::to_string(users.size()) +
-           " users; hover a dot for its score and view.</p>" + html_legend(legend) +
+  std::set<std::string> kinds;  // the legend names only what the run has
+  for (const auto& row : run.reid)
+    for (const auto& e : row.events) kinds.insert(e.kind);
+  for (const auto& kind : kinds) legend.emplace_back(event_colour(kind), kind);
+  s.html = "<p>" + std::to_string(count) + (count == 1 ? " event for " : " events for ") +
+           std::to_string(users.size()) + (users.size() == 1 ? " user" : " users") + "; hover a dot for its score and view.</p>" + html_legend(legend) +
            event_timeline(points, labels, run.reid.front().frame, run.reid.back().frame + 1, "frame") +
            "<details><summary>Event list" + std::string(count > 200 ? " (first 200)" : "") + "</summary>" +
            html_table({"frame", "time (s)", "event", "user", "track", "view", "score"}, table, 3) + "</details>";

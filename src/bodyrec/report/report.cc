@@ -38,12 +38,22 @@ svg .petal{fill-opacity:.75;stroke:#fff;stroke-width:1}
 .frames{display:grid;grid-template-columns:repeat(auto-fill,minmax(300px,1fr));gap:12px}
 figure{margin:0}figure img{width:100%;border-radius:6px;display:block;border:1px solid var(--line)}
 figcaption{font-size:12px;color:var(--muted);text-align:center;padding-top:2px}
-.users{display:flex;flex-direction:column;gap:10px}
-.user{display:grid;grid-template-columns:150px repeat(8,minmax(0,96px));gap:6px;align-items:end;padding-bottom:10px;border-bottom:1px solid var(--line)}
-.user .who{display:flex;flex-direction:column;font-size:12px;color:var(--muted);align-self:center}.user .who b{font-size:15px}
-.view img{aspect-ratio:1/2;object-fit:contain;background:#f1f5f9}
-.view .empty{aspect-ratio:1/2;border:2px dashed #cbd5e1;border-radius:6px;display:flex;align-items:center;justify-content:center;color:#94a3b8;font-size:11px;text-align:center}
-.view .withheld{border-style:solid;background:#f1f5f9}
+.users{display:flex;flex-direction:column;gap:12px}
+.user{display:grid;grid-template-columns:170px repeat(8,minmax(0,1fr));gap:4px 8px;align-items:start;padding-bottom:12px;border-bottom:1px solid var(--line)}
+.user:last-child{border-bottom:0;padding-bottom:0}
+.user .who{display:flex;flex-direction:column;font-size:12px;color:var(--muted);line-height:1.35;padding-top:4px}
+.user .who b{font-size:16px;margin-bottom:2px;overflow-wrap:anywhere}.user .who time{display:block;color:var(--ink);font-variant-numeric:tabular-nums}
+.view{min-width:0}
+.view img,.view .slot{display:block;width:100%;height:auto;aspect-ratio:1/2;border-radius:6px}
+.view img{object-fit:contain;background:#f1f5f9;border:1px solid var(--line)}
+.view .slot{display:flex;align-items:center;justify-content:center;text-align:center;font-size:11px;color:#94a3b8;padding:4px}
+.view .empty{border:2px dashed #cbd5e1}
+.view .withheld{border:1px solid #cbd5e1;background:repeating-linear-gradient(135deg,#f1f5f9 0 8px,#e2e8f0 8px 16px);color:var(--muted)}
+.view figcaption{font-weight:600;color:var(--ink);padding-top:3px}
+.uevents{grid-column:2/-1;display:flex;flex-wrap:wrap;gap:4px 6px;font-size:12px;align-items:center;margin-top:2px}
+.uevents .from,.uevents .more{color:var(--muted)}
+.uevent{border:1px solid;border-left-width:4px;border-radius:4px;padding:0 6px;background:#fff}
+.uevent time{color:var(--muted);margin-left:6px;font-variant-numeric:tabular-nums}
 table{border-collapse:collapse;font-size:13px;margin:6px 0 10px;width:100%}
 th,td{border-bottom:1px solid var(--line);padding:4px 8px;text-align:left;vertical-align:top}
 th{background:#f1f5f9;font-weight:600}.num{text-align:right;font-variant-numeric:tabular-nums}

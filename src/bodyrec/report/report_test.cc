@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/report/sections.h"
 #include "test_support.h"
 
 namespace bodyrec::report {
@@ -72,13 +73,17 @@ RunData reid_run() {
   return run;
 }
 
+// First seen 2026-11-20T13:00:00Z, last seen 13:20:00; scans with pixels in `views_with_scans`.
 ReportUser user(int id, const std::string& label, std::initializer_list<int> views_with_scans) {
   ReportUser u;
   u.id = id;
   u.label = label;
-  u.first_seen = 1;
-  u.last_seen = 9.5;
-  for (int v : views_with_scans) u.views[v] = cv::Mat(128, 64, CV_8UC3, cv::Scalar(30 * v, 100, 200));
+  u.first_seen = 1795179600;
+  u.last_seen = 1795179600 + 20 * 60;
+  for (int v : views_with_scans) {
+    u.views[v] = cv::Mat(128, 64, CV_8UC3, cv::Scalar(30 * v, 100, 200));
+    u.scanned[v] = true;
+  }
   return u;
 }
 
@@ -140,21 +145,56 @@ TEST(ReportSections, UsersShowEightSlotsWithEmptyOnesVisible) {
   ReportInput input;
   input.run = reid_run();
   input.have_gallery = true;
-  input.users = {user(1, "<script>alert(1)</script>", {0, 5}), user(2, "bob", {0, 1, 2, 3, 4, 5, 6, 7})};
+  input.users = {user(1, "<script>alert(1)</script>", {0, 5}), user(2, "bob", {0, 1, 2, 3, 4, 5, 6, 7}),
+                 user(3, "", {})};
+  input.users[2].scanned[6] = true;  // a scan stored without its image
+  input.users[2].events.push_back({"enrolled", 1795179600 + 90, "BR", std::nullopt, 4, "cam<2>"});
+  input.users[2].events.push_back({"recognised", 1795179600 + 600, "BR", 0.8125, 5, ""});
   const std::string page = render_report(input);
-  EXPECT_EQ(count(page, "class=\"user\""), 2);
-  EXPECT_EQ(count(page, "class=\"view\""), 16);
-  EXPECT_EQ(count(page, "class=\"empty\">no scan"), 6);
+  EXPECT_EQ(count(page, "class=\"user\""), 3);
+  EXPECT_EQ(count(page, "class=\"view\""), 24);
+  EXPECT_EQ(count(page, "<img class=\"scan\""), 10);
   EXPECT_EQ(count(page, "src=\"data:image/jpeg;base64,"), 10);
+  EXPECT_EQ(count(page, "class=\"slot empty\">no scan"), 6 + 7);
+  EXPECT_EQ(count(page, "class=\"slot withheld\" title=\"BR scan\">no image stored"), 1);
+  // Views in reid/view.h order, named under each slot.
+  const size_t row2 = page.find("<b style=\"color:" + std::string(palette(2)) + "\">bob</b>");
+  ASSERT_NE(row2, std::string::npos);
+  std::string captions;
+  for (size_t at = page.find("<figcaption>", row2); captions.size() < 40; at = page.find("<figcaption>", at + 1))
+    captions += page.substr(at + 12, page.find('<', at + 12) - at - 12) + " ";
+  EXPECT_EQ(captions.substr(0, 23), "F FR FL SR SL B BR BL F");
   EXPECT_EQ(page.find("<script"), std::string::npos);
   EXPECT_NE(page.find("&lt;script&gt;alert(1)&lt;/script&gt;"), std::string::npos);
-  EXPECT_NE(page.find("first seen 1.0 s"), std::string::npos);
+  EXPECT_NE(page.find("first seen <time>2026-11-20 13:00:00</time>"), std::string::npos);
+  EXPECT_NE(page.find("last seen <time>2026-11-20 13:20:00</time>"), std::string::npos);
+  // Users 1 and 2 have events in the run (enrolled, view_added / recognised); user 3 shows the gallery's.
+  EXPECT_NE(page.find("2 events in this run"), std::string::npos);
+  EXPECT_NE(page.find("1 event in this run"), std::string::npos);
+  EXPECT_EQ(count(page, "class=\"uevent\""), 2);
+  EXPECT_NE(page.find("recognised BR · 0.81<time>11-20 13:10:00</time>"), std::string::npos);
+  EXPECT_NE(page.find("title=\"2026-11-20 13:01:30 UTC, track 4, cam&lt;2&gt;\""), std::string::npos);
 
   input.images = false;
   const std::string hidden = render_report(input);
   EXPECT_EQ(hidden.find("data:image"), std::string::npos);
-  EXPECT_EQ(count(hidden, "image left out"), 10);
+  EXPECT_EQ(count(hidden, "class=\"user\""), 3);
+  EXPECT_EQ(count(hidden, "image left out"), 11);
+  EXPECT_EQ(count(hidden, "class=\"slot empty\">no scan"), 13);
   EXPECT_NE(hidden.find("--no-images"), std::string::npos);
+}
+
+TEST(ReportSections, ManyGalleryEventsShowTheMostRecent) {
+  ReportInput input;
+  input.run = groups_run();
+  input.have_gallery = true;
+  input.users = {user(4, "", {})};
+  for (int i = 0; i < 14; ++i) input.users[0].events.push_back({"recognised", 1795179600.0 + i, "", 0.5, {}, ""});
+  const std::string page = render_report(input);
+  EXPECT_EQ(count(page, "class=\"uevent\""), 10);
+  EXPECT_NE(page.find(">4 earlier…<"), std::string::npos);
+  EXPECT_NE(page.find("<time>11-20 13:00:13</time>"), std::string::npos);
+  EXPECT_EQ(page.find("<time>11-20 13:00:03</time>"), std::string::npos);
 }
 
 TEST(ReportSections, EvaluationsDrawCmcPointsAndPerSceneBars) {

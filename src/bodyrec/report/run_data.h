@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <istream>
 #include <optional>
 #include <string>
@@ -101,12 +102,25 @@ struct EvalResult {
 EvalResult parse_eval(const std::string& text, const std::string& name);
 EvalResult read_eval(const std::string& path);
 
-// --- gallery users (filled by the caller from the gallery store) ---
+// --- gallery users (read_gallery_users in gallery_users.h fills these from the store) ---
+// Times are wall-clock, as the gallery keeps them: seconds since the Unix epoch, UTC.
+struct ReportUserEvent {
+  std::string kind;  // enrolled, recognised, view_added, scan_replaced, left
+  double time = 0;
+  std::string view;  // "" when none
+  std::optional<double> score;
+  std::optional<int64_t> track;
+  std::string source;  // recording or camera; "" when unknown
+};
 struct ReportUser {
   int id = 0;
   std::string label;
-  double first_seen = 0, last_seen = 0;  // seconds
-  std::array<cv::Mat, 8> views;          // order of reid/view.h kAllViews; empty Mat = no scan yet
+  double first_seen = 0, last_seen = 0;
+  // Both in reid/view.h kAllViews order. A view shows as a scan when its image is non-empty or
+  // `scanned` says the gallery holds one without pixels (stored or read with --no-images).
+  std::array<cv::Mat, 8> views;
+  std::array<bool, 8> scanned{};
+  std::vector<ReportUserEvent> events;  // oldest first
 };
 
 // A decoded (and annotated) frame of the source to show.
