@@ -1,5 +1,8 @@
 #include "bench_support.h"
 
+#include <unistd.h>
+
+#include <fstream>
 #include <map>
 #include <utility>
 
@@ -16,6 +19,13 @@ const std::vector<cv::Mat>& vtest_frames(int start, int count) {
   for (int i = 0; i < start + count && capture.read(frame); ++i)
     if (i >= start) frames.push_back(frame.clone());
   return frames;
+}
+
+double resident_mb() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
 }  // namespace bodyrec::bench

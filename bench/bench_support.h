@@ -13,4 +13,7 @@ const std::string kVtestPath = "/usr/share/doc/opencv-doc/examples/data/vtest.av
 // Frames [start, start + count) of vtest.avi; empty when the video is missing.
 const std::vector<cv::Mat>& vtest_frames(int start = 0, int count = 200);
 
+// This process's resident memory now, in MiB (/proc/self/statm), for the soak benchmarks.
+double resident_mb();
+
 }  // namespace bodyrec::bench

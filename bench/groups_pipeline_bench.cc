@@ -73,8 +73,33 @@ void BM_GroupStagesOnly(benchmark::State& state) {
   }
 }
 
+// Soak: range(0) frames (the 300 decoded frames cycled; 8000 is ten times the video's length) through
+// the whole pipeline; resident memory after warm-up (frame 500) and at the end.
+void BM_GroupsSoak(benchmark::State& state) {
+  const auto* loaded = frames_or_skip(state);
+  if (!loaded) return;
+  const auto& frames = *loaded;
+  for (auto _ : state) {
+    bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+    bodyrec::DetectAndTrack tracking(detector, {});
+    bodyrec::GroupPipeline pipeline({}, pets_ground());
+    double warm = 0;
+    for (int n = 0; n < state.range(0); ++n) {
+      const cv::Mat& frame = frames[static_cast<size_t>(n) % frames.size()];
+      pipeline.process(frame, n / kFps, tracking.step(n, frame));
+      if (n == 500) warm = bodyrec::bench::resident_mb();
+    }
+    const double end = bodyrec::bench::resident_mb();
+    state.counters["frames"] = static_cast<double>(state.range(0));
+    state.counters["rss_warm_mb"] = warm;
+    state.counters["rss_end_mb"] = end;
+    state.counters["rss_growth_pct"] = warm > 0 ? 100.0 * (end - warm) / warm : 0.0;
+  }
+}
+
 BENCHMARK(BM_GroupsPipeline)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(10.0);
 BENCHMARK(BM_GroupStagesOnly)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK(BM_GroupsSoak)->Arg(8000)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

@@ -6,7 +6,6 @@
 // body is pending (a scan described and scored every frame) until recognised, then checked every 10th
 // frame. The gallery holds 100 other users with 8 views each (random clothing) plus these 4 people.
 // Per body = orientation (face detector included) + partial scan when wanted + describe + decide.
-#include <fstream>
 #include <memory>
 #include <random>
 #include <string>
@@ -16,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 #include <unistd.h>
 
+#include "bench_support.h"
 #include "bodyrec/reid/online_reid.h"
 #include "bodyrec/reid/orientation_estimator.h"
 #include "bodyrec/reid/partial_scan.h"
@@ -47,13 +47,6 @@ const Frames& frames() {
     s.frames.push_back(std::move(f));
   }
   return s;
-}
-
-double rss_mb() {
-  std::ifstream statm("/proc/self/statm");
-  long pages = 0, resident = 0;
-  statm >> pages >> resident;
-  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
 // A gallery file with `users` random people (8 views each, stripes descriptors), in a fresh directory.
@@ -172,14 +165,14 @@ void BM_ReidSoak(benchmark::State& state) {
     double warm = 0;
     for (int i = 0; i < state.range(0); ++i) {
       p.step();
-      if (i == 2000) warm = rss_mb();
+      if (i == 2000) warm = bench::resident_mb();
     }
     int scans = 0;
     for (const User& u : p.gallery->users()) scans += u.scans;
     state.counters["frames"] = static_cast<double>(state.range(0));
     state.counters["rss_warm_mb"] = warm;
-    state.counters["rss_end_mb"] = rss_mb();
-    state.counters["rss_growth_pct"] = warm > 0 ? 100.0 * (rss_mb() - warm) / warm : 0.0;
+    state.counters["rss_end_mb"] = bench::resident_mb();
+    state.counters["rss_growth_pct"] = warm > 0 ? 100.0 * (bench::resident_mb() - warm) / warm : 0.0;
     state.counters["users"] = p.gallery->user_count();
     state.counters["scans"] = scans;
     state.counters["live_tracks"] = static_cast<double>(p.reid->live_tracks());

@@ -35,7 +35,8 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   sub.add_option("--min-quality", o.reid.min_quality, "Partial scans below this quality (0..1) are not used")
       ->capture_default_str();
   sub.add_option("--threshold", o.reid.threshold,
-                 "Similarity above which a scan matches a user (default: the matcher's own threshold)");
+                 "Similarity above which a scan matches a user (default: the matcher's own threshold)")
+      ->default_str("matcher's");
   sub.add_option("--margin", o.reid.margin,
                  "A scan votes for its best user only when it beats the next by this share of |threshold|")
       ->capture_default_str();
