@@ -11,8 +11,8 @@
 namespace bodyrec {
 
 // Decodes `path` with cv::imdecode `flags` (cv::IMREAD_COLOR, cv::IMREAD_UNCHANGED, ...). Throws
-// InputError "PATH: missing", "PATH: cannot read (reason)", "PATH: empty file", "PATH: truncated PNG|JPEG
-// file (...)" or "PATH: cannot decode image".
+// InputError "PATH: missing", "PATH: a directory, not an image", "PATH: cannot read (reason)",
+// "PATH: empty file", "PATH: truncated PNG|JPEG file (...)" or "PATH: cannot decode image".
 cv::Mat read_image_file(const std::string& path, int flags);
 
 // The reason `bytes` is an incomplete PNG or JPEG file ("" when complete or another format): a PNG must
