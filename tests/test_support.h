@@ -63,6 +63,13 @@ nlohmann::json last_json_line(const std::string& out);
 
 bool contains(const std::string& text, const std::string& part);
 
+// The lines of `text` (without their newlines).
+std::vector<std::string> lines_of(const std::string& text);
+
+// A failed command as the README promises: exit `code`, exactly one line on stderr starting with
+// "bodyrec: error: " and containing `names` (the file, frame or field at fault).
+void expect_one_line_error(const RunResult& r, int code, const std::string& names);
+
 // Runs `parse` and returns the InputError message ("" and a test failure when nothing or something else
 // is thrown).
 template <typename F>

@@ -14,20 +14,6 @@ namespace fs = std::filesystem;
 namespace bodyrec::testing {
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream s(text);
-  for (std::string line; std::getline(s, line);) lines.push_back(line);
-  return lines;
-}
-
-void expect_one_line_error(const RunResult& r, int code, const std::string& names) {
-  EXPECT_EQ(r.exit_code, code) << r.err;
-  EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;
-  EXPECT_EQ(r.err.rfind("bodyrec: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
-}
-
 TEST(Cli, HelpListsSubcommandsAndExitCodes) {
   const RunResult r = run_bodyrec({"--help"});
   EXPECT_EQ(r.exit_code, 0);

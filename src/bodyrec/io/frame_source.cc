@@ -11,6 +11,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/image_file.h"
 
 namespace fs = std::filesystem;
 
@@ -54,12 +55,11 @@ class ImageListSource : public FrameSource {
       const int index = next_++;
       if (!selection_.wanted(index)) continue;
       const std::string& file = files_[index];
-      cv::Mat image = cv::imread(file, cv::IMREAD_COLOR);
-      if (image.empty()) {
-        std::error_code ec;
-        throw InputError(fs::exists(file, ec) ? "cannot decode image " + file + " (frame " +
-                                                    std::to_string(index) + ")"
-                                              : "image not found: " + file);
+      cv::Mat image;
+      try {
+        image = read_image_file(file, cv::IMREAD_COLOR);
+      } catch (const InputError& e) {
+        throw InputError(std::string(e.what()) + " (frame " + std::to_string(index) + ")");
       }
       frame = Frame{image, index, 0.0, file};
       selection_.delivered();

@@ -246,7 +246,7 @@ TEST(FrameSource, CorruptSingleImageNamesTheFile) {
     source->read(f);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), "cannot decode image " + o.path + " (frame 0)");
+    EXPECT_EQ(std::string(e.what()), o.path + ": cannot decode image (frame 0)");
   }
 }
 

@@ -130,7 +130,11 @@ GroundTruth read_ground_truth(const std::string& path) {
   if (!std::filesystem::exists(path, ec)) throw InputError("ground truth not found: " + path);
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext == ".xml" ? read_cvml(path) : read_mot(path, true);
+  if (ext == ".xml") return read_cvml(path);
+  GroundTruth gt = read_mot(path, true);
+  // Nothing to score against: an empty or blank gt.txt is a mistake, not a sequence without people.
+  if (gt.boxes.empty()) throw InputError(path + ": no ground-truth rows (empty file)");
+  return gt;
 }
 
 }  // namespace bodyrec

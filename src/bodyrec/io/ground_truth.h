@@ -42,7 +42,8 @@ GroundTruth read_mot(const std::string& path, bool is_ground_truth);
 // The same from a stream; `name` names the source in messages.
 GroundTruth read_mot(std::istream& in, const std::string& name, bool is_ground_truth);
 
-// Chooses by extension: .xml -> CVML, otherwise MOTChallenge text (as ground truth).
+// Chooses by extension: .xml -> CVML, otherwise MOTChallenge text (as ground truth). A MOT file without a
+// single row is an InputError ("PATH: no ground-truth rows"), as an empty CVML file is.
 GroundTruth read_ground_truth(const std::string& path);
 
 }  // namespace bodyrec

@@ -382,5 +382,14 @@ TEST(ReadGroundTruth, MissingFileNamesThePath) {
   }
 }
 
+TEST(ReadGroundTruth, EmptyMotGroundTruthIsAnInputError) {
+  TempDir dir;
+  for (const char* text : {"", "\n  \n"}) {
+    write_text(dir / "gt.txt", text);
+    EXPECT_EQ(input_error([&] { read_ground_truth((dir / "gt.txt").string()); }),
+              (dir / "gt.txt").string() + ": no ground-truth rows (empty file)");
+  }
+}
+
 }  // namespace
 }  // namespace bodyrec

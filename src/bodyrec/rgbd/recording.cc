@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/image_file.h"
 
 namespace fs = std::filesystem;
 
@@ -34,12 +35,6 @@ void check_image(const cv::Mat& image, int type, const Intrinsics& k, const std:
                      ", intrinsics say " + std::to_string(k.width) + "x" + std::to_string(k.height));
 }
 
-cv::Mat read_image(const std::string& file, int flags) {
-  if (!fs::exists(file)) throw InputError(file + ": missing");
-  cv::Mat image = cv::imread(file, flags);
-  if (image.empty()) throw InputError(file + ": cannot decode image");
-  return image;
-}
 
 void write_file(const std::string& file, const std::string& text) {
   const std::string tmp = file + ".tmp";
@@ -113,17 +108,17 @@ RgbdFrame RecordingReader::read_frame(int index) const {
   std::string first_image;
   if (meta_.streams.color) {
     first_image = (d / "color" / (stem + "." + meta_.color_format)).string();
-    f.color = read_image(first_image, cv::IMREAD_COLOR);
+    f.color = read_image_file(first_image, cv::IMREAD_COLOR);
     check_image(f.color, CV_8UC3, meta_.color, first_image, "colour image");
   }
   if (meta_.streams.depth) {
     const std::string file = (d / "depth" / (stem + ".png")).string();
-    f.depth = read_image(file, cv::IMREAD_UNCHANGED);
+    f.depth = read_image_file(file, cv::IMREAD_UNCHANGED);
     check_image(f.depth, CV_16UC1, meta_.depth, file, "depth image");
   }
   if (meta_.streams.body_index) {
     const std::string file = (d / "bodyindex" / (stem + ".png")).string();
-    f.body_index = read_image(file, cv::IMREAD_UNCHANGED);
+    f.body_index = read_image_file(file, cv::IMREAD_UNCHANGED);
     RecordingStreams only;
     only.body_index = true;
     RecordingMeta m = meta_;

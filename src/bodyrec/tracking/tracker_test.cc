@@ -1,5 +1,6 @@
 #include "bodyrec/tracking/tracker.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -119,6 +120,43 @@ TEST(MultiTracker, ReassociatesAfterOcclusionByDistance) {
   ASSERT_EQ(tracks.size(), 1u);
   EXPECT_EQ(tracks[0].id, 1);
   EXPECT_EQ(tracks[0].state, TrackState::kConfirmed);
+}
+
+// Bad-input table (docs/reliability.md): 500 detections in a frame, then frames with none. A 25x20 grid of
+// 30x60 boxes 40 px apart (no two overlap), moving 2 px right per frame: every box keeps its own track.
+TEST(MultiTracker, FiveHundredDetectionsThenNoneKeepOneTrackPerPerson) {
+  const auto crowd = [](int f) {
+    std::vector<Detection> d;
+    for (int row = 0; row < 20; ++row)
+      for (int col = 0; col < 25; ++col) d.push_back({Box(col * 40.0 + 2.0 * f, row * 70.0, 30, 60), 1.0});
+    return d;
+  };
+  MultiTracker tracker;  // min_hits 3, coast_frames 1
+  EXPECT_TRUE(tracker.update(0, crowd(0)).empty());
+  EXPECT_EQ(tracker.all_tracks().size(), 500u);
+  tracker.update(1, crowd(1));
+  const auto tracks = tracker.update(2, crowd(2));
+  ASSERT_EQ(tracks.size(), 500u);
+  const auto truth = crowd(2);
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    EXPECT_EQ(tracks[i].id, static_cast<int>(i) + 1);  // ids 1..500, sorted
+    EXPECT_EQ(tracks[i].state, TrackState::kConfirmed);
+    double best = 0;
+    for (const auto& d : truth) best = std::max(best, iou(tracks[i].box, d.box));
+    EXPECT_GT(best, 0.9) << "track " << tracks[i].id;
+  }
+  // No detections: all 500 coast one frame as lost, then are no longer reported.
+  const auto lost = tracker.update(3, {});
+  ASSERT_EQ(lost.size(), 500u);
+  EXPECT_EQ(count_state(lost, TrackState::kLost), 500);
+  EXPECT_TRUE(tracker.update(4, {}).empty());
+  EXPECT_EQ(tracker.all_tracks().size(), 500u);  // kept for max_age frames
+  // Back: the same ids, no new ones.
+  tracker.update(5, crowd(5));
+  const auto back = tracker.update(6, crowd(6));
+  ASSERT_EQ(back.size(), 500u);
+  EXPECT_EQ(back.front().id, 1);
+  EXPECT_EQ(back.back().id, 500);
 }
 
 TEST(MultiTracker, RejectsFramesGoingBackwardsAndBadOptions) {

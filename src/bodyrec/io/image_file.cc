@@ -1,0 +1,72 @@
+#include "bodyrec/io/image_file.h"
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace bodyrec {
+namespace {
+
+bool starts_with(const std::string& bytes, const char* prefix, size_t n) {
+  return bytes.size() >= n && std::memcmp(bytes.data(), prefix, n) == 0;
+}
+
+// A PNG is a signature and chunks (4-byte big-endian length, type, data, CRC); it ends with IEND.
+std::string png_reason(const std::string& bytes) {
+  size_t at = 8;
+  while (at + 8 <= bytes.size()) {
+    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
+    const uint64_t length = (uint64_t{p[0]} << 24) | (p[1] << 16) | (p[2] << 8) | p[3];
+    if (std::memcmp(p + 4, "IEND", 4) == 0 && at + 12 <= bytes.size()) return "";
+    at += 12 + length;
+  }
+  return "truncated PNG file (" + std::to_string(bytes.size()) + " bytes, no IEND chunk)";
+}
+
+// Markers cannot occur inside JPEG entropy-coded data (0xFF is stuffed as FF 00), so an end-of-image
+// marker after the first start-of-scan means the file reached its end (an EXIF thumbnail's own markers
+// come before the scan).
+std::string jpeg_reason(const std::string& bytes) {
+  const size_t scan = bytes.find("\xFF\xDA", 2);
+  if (scan != std::string::npos && bytes.find("\xFF\xD9", scan + 2) != std::string::npos) return "";
+  return "truncated JPEG file (" + std::to_string(bytes.size()) + " bytes, " +
+         (scan == std::string::npos ? "no image scan" : "no end-of-image marker") + ")";
+}
+
+}  // namespace
+
+std::string truncated_image_reason(const std::string& bytes) {
+  if (starts_with(bytes, "\x89PNG\r\n\x1a\n", 8)) return png_reason(bytes);
+  if (starts_with(bytes, "\xFF\xD8\xFF", 3)) return jpeg_reason(bytes);
+  return "";
+}
+
+cv::Mat read_image_file(const std::string& path, int flags) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": missing");
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": a directory, not an image");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+  if (bytes.empty()) throw InputError(path + ": empty file");
+  const std::string truncated = truncated_image_reason(bytes);
+  if (!truncated.empty()) throw InputError(path + ": " + truncated);
+  cv::Mat image;
+  try {
+    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), flags);
+  } catch (const cv::Exception&) {
+    image.release();
+  }
+  if (image.empty()) throw InputError(path + ": cannot decode image");
+  return image;
+}
+
+}  // namespace bodyrec
