@@ -189,7 +189,9 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
       for (const Score& x : s) std::fprintf(stderr, " u%lld %.3f(%s)", static_cast<long long>(x.user), x.similarity, view_name(x.view));
       std::fprintf(stderr, "\n");
     }
-    if (s.empty() || s.front().similarity < threshold_ - new_gap) {
+    // "New": nobody passes the threshold in a comparison of the same side of the body (same or
+    // complementary view: reliable), or even the best is far below it (across views).
+    if (s.empty() || s.front().similarity < threshold_ - new_gap || (s.front().near && s.front().similarity <= threshold_)) {
       ++for_new;
       continue;
     }

@@ -7,7 +7,8 @@
 //    scored against the gallery: per user, the best similarity over the user's scans of the same view and
 //    its complementary views (reid/view.h), or over all the user's views when it has none of those. A scan
 //    votes for its best user when that passes the threshold and beats the next user by a margin, for "new"
-//    when even the best user is well below the threshold (new_gap), and abstains otherwise. Once `decide_after` scans are in, the track is recognised
+//    when the best user fails the threshold on the same side of the body (same or complementary view) or
+//    is well below it (new_gap) across views, and abstains otherwise. Once `decide_after` scans are in, the track is recognised
 //    as the user with a majority of the votes, or enrolled as a new user (best scan per view) when most
 //    scans say "new"; otherwise it collects more, and after max_wait_frames it is decided by the larger
 //    side (when no scan voted at all, it waits up to three times as long, then enrols). Users held by another track in the same frame are never candidates: two bodies in one frame
@@ -63,8 +64,8 @@ struct OnlineReidOptions {
   double threshold = std::numeric_limits<double>::quiet_NaN();
   // A scan votes for its best user only when it beats the next user by this share of |threshold|.
   double margin = 0.3;
-  // A scan votes "new person" only when its best user is below the threshold by this share of
-  // |threshold|; in between it does not vote.
+  // Across views (the user has no scan of this side of the body), a scan votes "new person" only when
+  // its best user is below the threshold by this share of |threshold|; in between it does not vote.
   double new_gap = 0.6;
   // Views: "near" compares a scan with the user's scans of the same and complementary views (the
   // thesis), falling back to all views when the user has none of those; "all" with every view.
