@@ -42,7 +42,8 @@ struct EvalReidCommand {
     if (json) {
       const nlohmann::json j = {{"rank1", r.rank1},   {"rank5", r.rank5},     {"rank10", r.rank10},
                                 {"rank20", r.rank20}, {"map", r.map},         {"probes", r.probes},
-                                {"gallery", r.gallery}, {"ms_per_image", r.ms_per_image}};
+                                {"gallery", r.gallery}, {"ms_per_image", r.ms_per_image},
+                                {"same_accepted", r.same_accepted}, {"different_rejected", r.different_rejected}};
       std::printf("%s\n", j.dump().c_str());
     }
   }
@@ -69,7 +70,9 @@ void add(CLI::App& eval) {
   sub->add_option("--model", command->model,
                   "XQDA model from `bodyrec train-reid` for the default matcher (used as is, not retrained)");
   sub->add_flag("--json", command->json,
-                "End stdout with one JSON object (rank1, rank5, rank10, rank20, map, probes, gallery, ms_per_image)");
+                "End stdout with one JSON object (rank1, rank5, rank10, rank20, map, probes, gallery, ms_per_image, "
+                "same_accepted, different_rejected: shares of the test's same-person pairs accepted and "
+                "different-person pairs rejected at the matcher's threshold)");
   sub->callback([command] { command->run(); });
 }
 

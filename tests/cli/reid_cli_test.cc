@@ -73,6 +73,10 @@ TEST(EvalReidCli, DefaultTrainsXqdaAndKazeIsMeasured) {
   ASSERT_EQ(d.exit_code, 0) << d.err;
   EXPECT_TRUE(contains(d.out, "XQDA"));
   EXPECT_GE(last_json_line(d.out)["rank1"].get<double>(), 0.8);
+  // How the learned same-person threshold does on the test pairs is reported (printed and in the JSON).
+  EXPECT_TRUE(contains(d.out, "threshold     accepts"));
+  EXPECT_GE(last_json_line(d.out)["same_accepted"].get<double>(), 0.5);
+  EXPECT_GE(last_json_line(d.out)["different_rejected"].get<double>(), 0.25);
   const RunResult k = run_bodyrec(eval_args({"--matcher", "kaze", "--train-ids", "5", "--splits", "1"}));
   ASSERT_EQ(k.exit_code, 0) << k.err;
   EXPECT_EQ(last_json_line(k.out)["probes"].get<int>(), 5);
