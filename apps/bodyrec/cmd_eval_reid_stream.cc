@@ -20,8 +20,7 @@ struct EvalReidStreamCommand {
   bool json = false;
 
   void run() const {
-    reid_input_meta(input);  // before any file is created
-    make_matcher(options.matcher, options.model);
+    const ReidInput in = open_reid_input(input, options);  // before any file is created
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     // A fresh gallery in a private temporary directory unless one is named.
@@ -45,7 +44,7 @@ struct EvalReidStreamCommand {
     bool any_truth = false;
     int last_frame = -1;
     double ms = 0, last_time = 0;
-    const int frames = run_reid(input, options, *g, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, options, *g, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;

@@ -18,8 +18,7 @@ struct ReidCommand {
   bool json = false, quiet = false;
 
   void run() const {
-    reid_input_meta(input);  // before any file is created
-    make_matcher(options.matcher, options.model);
+    const ReidInput in = open_reid_input(input, options);  // before any file is created
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
@@ -27,7 +26,7 @@ struct ReidCommand {
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
-    const int frames = run_reid(input, options, *gallery, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, options, *gallery, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;

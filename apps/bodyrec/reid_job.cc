@@ -64,25 +64,24 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
   return gallery;
 }
 
-RecordingMeta reid_input_meta(const std::string& input) {
+ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options) {
   if (is_skeleton_file(input)) throw InputError(input + ": re-identification needs a recording with colour and depth");
-  const RecordingMeta meta = RecordingReader(input).meta();
-  if (!meta.streams.color || !meta.streams.depth)
+  ReidInput in{input, RecordingReader(input).meta(), nullptr};
+  if (!in.meta.streams.color || !in.meta.streams.depth)
     throw InputError(input + "/meta.json: re-identification needs colour and depth streams");
-  return meta;
+  in.matcher = make_matcher(options.matcher, options.model);
+  return in;
 }
 
-int run_reid(const std::string& input, const ReidCliOptions& options, Gallery& gallery,
+int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gallery,
              const std::function<void(const ReidFrame&)>& sink) {
-  const RecordingMeta meta = reid_input_meta(input);
-  const auto matcher = make_matcher(options.matcher, options.model);
   OnlineReidOptions ro = options.reid;
   ro.all_views = options.match_views == "all";
-  if (ro.source.empty()) ro.source = input;
-  OnlineReid reid(gallery, *matcher, ro);
-  const PartialScanExtractor scans(meta);
+  if (ro.source.empty()) ro.source = input.path;
+  OnlineReid reid(gallery, *input.matcher, ro);
+  const PartialScanExtractor scans(input.meta);
   std::map<uint64_t, cv::Rect> last_box;  // per track: the colour box of its last scan
-  const int frames = run_orientation(input, options.orient, [&](const OrientFrame& f) {
+  const int frames = run_orientation(input.path, options.orient, [&](const OrientFrame& f) {
     ReidFrame out{f.frame, f.bodies, {}, f.ms, 0, 0};
     std::vector<ReidBody> bodies;
     auto t0 = std::chrono::steady_clock::now();

@@ -37,15 +37,21 @@ struct ReidFrame {
   double ms_orient = 0, ms_scan = 0, ms_reid = 0;
 };
 
+// What a run needs before any file is written: the recording's meta (InputError when it cannot be read
+// or lacks colour or depth) and the matcher (UsageError/InputError for a bad name or model). Open it
+// before creating a gallery or output, so a wrong path leaves no empty files behind.
+struct ReidInput {
+  std::string path;
+  RecordingMeta meta;
+  std::unique_ptr<AppearanceMatcher> matcher;
+};
+ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options);
+
 // Runs the recording through; `sink` gets every frame (and, with an empty frame.index = -1 frame, the
 // final `left` events of finish()). Returns the number of frames. Errors as the readers and the
 // gallery say; output already passed to `sink` stays valid.
-int run_reid(const std::string& input, const ReidCliOptions& options, Gallery& gallery,
+int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gallery,
              const std::function<void(const ReidFrame&)>& sink);
-
-// The recording's meta; InputError when it cannot be read or lacks colour or depth (call before
-// creating a gallery, so a wrong path leaves no empty gallery behind).
-RecordingMeta reid_input_meta(const std::string& input);
 
 // Opens (or creates) the gallery the options name.
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);

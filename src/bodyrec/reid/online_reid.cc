@@ -63,9 +63,33 @@ OnlineReid::OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, Onlin
   threshold_ = std::isnan(options_.threshold) ? matcher_.threshold() : options_.threshold;
 }
 
+bool OnlineReid::usable(const ViewEstimate& view) const {
+  return view.view && view.confidence >= options_.min_view_confidence;
+}
+
+bool OnlineReid::usable(const ReidBody& body) const {
+  return usable(body.view) && body.scan && body.scan->quality >= options_.min_quality;
+}
+
+// Whether a scan of this quality would be stored for the user's view: the view is missing, was made by
+// another matcher, or is clearly worse.
+bool OnlineReid::improves(UserId user, View view, double quality) const {
+  const GalleryEntry* stored = gallery_.find(user, view);
+  return !stored || stored->descriptor != descriptor_ || quality > options_.update_gain * stored->quality;
+}
+
+std::map<View, const OnlineReid::Probe*> OnlineReid::best_per_view(const std::vector<Probe>& probes,
+                                                                   const std::vector<bool>& use) {
+  std::map<View, const Probe*> best;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const Probe& p = probes[i];
+    if (use[i] && (!best.count(p.view) || p.quality > best[p.view]->quality)) best[p.view] = &p;
+  }
+  return best;
+}
+
 std::optional<OnlineReid::Probe> OnlineReid::describe(const ReidBody& body) const {
-  if (!body.scan || !body.view.view || body.view.confidence < options_.min_view_confidence) return std::nullopt;
-  if (body.scan->quality < options_.min_quality) return std::nullopt;
+  if (!usable(body)) return std::nullopt;
   Probe p;
   p.view = *body.view.view;
   p.quality = body.scan->quality;
@@ -144,9 +168,7 @@ void OnlineReid::log(const ReidEvent& event) {
 
 void OnlineReid::enrol(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
   // The best probe per view; the best of all is the enrolment scan.
-  std::map<View, const Probe*> best;
-  for (const Probe& p : track.probes)
-    if (!best.count(p.view) || p.quality > best[p.view]->quality) best[p.view] = &p;
+  const std::map<View, const Probe*> best = best_per_view(track.probes, std::vector<bool>(track.probes.size(), true));
   const Probe* first = nullptr;
   for (const auto& [v, p] : best)
     if (!first || p->quality > first->quality) first = p;
@@ -218,15 +240,10 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     for (auto& [k, t] : tracks_)
       if (k != key && t.user == winner) t.last_seen = -1e300;
     // The scans that voted for this user add the views it lacks (or improve them).
-    std::map<View, const Probe*> best;
-    for (size_t i = 0; i < track.probes.size(); ++i)
-      if (voted_for[i] == winner) {
-        const Probe& p = track.probes[i];
-        if (!best.count(p.view) || p.quality > best[p.view]->quality) best[p.view] = &p;
-      }
-    for (const auto& [v, p] : best) {
-      const GalleryEntry* stored = gallery_.find(winner, v);
-      if (stored && stored->descriptor == descriptor_ && p->quality <= options_.update_gain * stored->quality) continue;
+    std::vector<bool> voted(track.probes.size());
+    for (size_t i = 0; i < voted.size(); ++i) voted[i] = voted_for[i] == winner;
+    for (const auto& [v, p] : best_per_view(track.probes, voted)) {
+      if (!improves(winner, v, p->quality)) continue;
       ++gallery_version_;
       if (gallery_.put_scan(winner, gallery_scan(*p)) == PutResult::kInserted) {
         events.push_back({ReidEventKind::kViewAdded, winner, key, v, std::nullopt});
@@ -246,14 +263,12 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
 
 void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::vector<ReidEvent>& events,
                         int& described) {
-  if (!body.scan || !body.view.view || body.view.confidence < options_.min_view_confidence) return;
-  if (body.scan->quality < options_.min_quality) return;
+  if (!usable(body)) return;
   const UserId user = *track.user;
   const View view = *body.view.view;
-  const GalleryEntry* stored = gallery_.find(user, view);
-  const bool improves = !stored || stored->descriptor != descriptor_ || body.scan->quality > options_.update_gain * stored->quality;
+  const bool better = improves(user, view, body.scan->quality);
   const bool verify = frame_ - track.last_verify >= options_.verify_every;
-  if (!verify && !(improves && frame_ - track.last_describe >= options_.update_every)) return;
+  if (!verify && !(better && frame_ - track.last_describe >= options_.update_every)) return;
   track.last_describe = frame_;
   std::optional<Probe> probe = describe(body);
   if (!probe) return;
@@ -288,7 +303,7 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   }
   // A known view must still match this user (not someone who stepped in front); a new view must not
   // look like anybody else.
-  if (!improves || track.strikes > 0 || !mine) return;
+  if (!better || track.strikes > 0 || !mine) return;
   const bool ok = mine->near ? mine->similarity > threshold_ : best_other <= threshold_ && mine->similarity > clear_miss;
   if (!ok) return;
   ++gallery_version_;
@@ -310,13 +325,12 @@ void OnlineReid::leave(uint64_t key, Track& track, std::vector<ReidEvent>& event
 }
 
 bool OnlineReid::wants_scan(uint64_t track, const ViewEstimate& view) const {
-  if (!view.view || view.confidence < options_.min_view_confidence) return false;
+  if (!usable(view)) return false;
   const auto it = tracks_.find(track);
   if (it == tracks_.end() || !it->second.user) return true;
   if (frame_ + 1 - it->second.last_verify >= options_.verify_every) return true;
   if (frame_ + 1 - it->second.last_describe < options_.update_every) return false;
-  const GalleryEntry* stored = gallery_.find(*it->second.user, *view.view);
-  return !stored || stored->descriptor != descriptor_ || options_.update_gain * stored->quality < 1.0;
+  return improves(*it->second.user, *view.view, 1.0);  // could the best possible scan (quality 1) improve it?
 }
 
 ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {

@@ -152,6 +152,11 @@ class OnlineReid {
   std::vector<Score> score_users(const Probe& probe) const;
   // The same, cached in the probe until the gallery changes.
   const std::vector<Score>& scores(Probe& probe);
+  bool usable(const ViewEstimate& view) const;
+  bool usable(const ReidBody& body) const;  // a view confident enough and a scan good enough
+  bool improves(UserId user, View view, double quality) const;
+  // The best probe per view among those with use[i].
+  static std::map<View, const Probe*> best_per_view(const std::vector<Probe>& probes, const std::vector<bool>& use);
   std::optional<Probe> describe(const ReidBody& body) const;
   void decide(uint64_t key, Track& track, std::vector<ReidEvent>& events);
   void enrol(uint64_t key, Track& track, std::vector<ReidEvent>& events);
