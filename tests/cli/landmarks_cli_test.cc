@@ -21,7 +21,7 @@ class LandmarkCommands : public ::testing::Test {
     set_ = run_bodyrec({"make-contour-set", "--pennfudan", (*dir_ / "pf").string(), "--out", (*dir_ / "set").string(),
                         "--landmarks", "30", "--flip", "--json"});
     shape_ = run_bodyrec({"train-shape", (*dir_ / "set" / "train.xml").string(), "--out", (*dir_ / "shape.dat").string(),
-                          "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
+                          "--method", "trees", "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
                           "3", "--json"});
   }
   static void TearDownTestSuite() { delete dir_; }
@@ -88,6 +88,27 @@ TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
   EXPECT_NEAR(sum_rel / persons, j["mean_rel_height"].get<double>(), 1e-9);
 }
 
+// The default method: the body mask network (a short run, on the same drawn people).
+TEST_F(LandmarkCommands, TrainMaskNetThenLandmark) {
+  const RunResult t = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("net.dat").string(),
+                                   "--iterations", "80", "--net-size", "24x64", "--batch", "8", "--json"});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const auto j = last_json_line(t.out);
+  EXPECT_EQ(j["method"], "mask-net");
+  EXPECT_EQ(j["train"]["persons"], 12);  // 6 people and their mirrors
+  EXPECT_LT(j["model_bytes"].get<int>(), 1000000);  // ~53 000 weights
+  const RunResult e = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                   path("net.dat").string(), "--json"});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(last_json_line(e.out)["persons"], 2);
+  EXPECT_LT(last_json_line(e.out)["mean_px"].get<double>(), 40.0);  // 150 px people after 80 mini-batches
+  // The commands that read a shape model take either kind.
+  const RunResult r = run_bodyrec({"landmark", path("set/images/P03.png").string(), "--shape", path("net.dat").string(),
+                                   "--motion", "off", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& p : last_json_line(r.out)["people"]) EXPECT_EQ(p["landmarks"].size(), 30u);
+}
+
 TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {
   ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
   const RunResult d = run_bodyrec({"train-detector", path("set/train.xml").string(), "--test",
@@ -139,7 +160,7 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   EXPECT_TRUE(contains(r.err, "3 landmarks per box, the model 30")) << r.err;
   r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", path("set/train.xml").string()});
   EXPECT_EQ(r.exit_code, 3);
-  EXPECT_TRUE(contains(r.err, "not a dlib shape predictor")) << r.err;
+  EXPECT_TRUE(contains(r.err, "neither a dlib shape predictor nor a bodyrec mask-net model")) << r.err;
   r = run_bodyrec({"make-contour-set", "--pennfudan", path("nowhere").string(), "--out", path("o").string()});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "nowhere")) << r.err;
@@ -152,6 +173,18 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--nu", "0"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--nu")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--net-size", "30x90"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--net-size")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--net-size", "32"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--net-size must be WxH")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--seed", "abc"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--seed")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--method", "svm"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--method")) << r.err;
   r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--mot", path("m.txt").string()});
   EXPECT_EQ(r.exit_code, 2);
   // An output that cannot be written: processing error (4).
