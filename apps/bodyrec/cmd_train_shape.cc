@@ -20,7 +20,7 @@ struct TrainShapeCommand {
   std::string train_xml, out;
   ShapeTrainOptions options;
   int holdout_every = 0;
-  std::string net_size = "32x96", seed;
+  std::string net_size = "32x96", seed, holdout_xml;
   bool json = false;
 
   void run() {
@@ -42,6 +42,10 @@ struct TrainShapeCommand {
       const bool held_out =
           holdout_every > 0 && group % static_cast<size_t>(holdout_every) == static_cast<size_t>(holdout_every - 1);
       (held_out ? validation : train).images.push_back(std::move(image));
+    }
+    if (!holdout_xml.empty()) {
+      if (validation.images.empty()) throw UsageError("--holdout-xml needs --holdout-every K");
+      write_landmark_dataset(validation, holdout_xml, "validation part of " + train_xml);
     }
     const auto t0 = std::chrono::steady_clock::now();
     const BodyShapeModel model = train_body_shape(train, options);
@@ -126,6 +130,9 @@ void add(CLI::App& app) {
   sub->add_option("--holdout-every", command->holdout_every,
                   "Hold out every Kth source image (index % K == K-1, mirrored copies with their original) for validation; 0 = none")
       ->capture_default_str();
+  sub->add_option("--holdout-xml", command->holdout_xml,
+                  "Write the held-out images as imglab XML (absolute image paths), to score them again with "
+                  "`eval landmarks`");
   sub->add_flag("--verbose", o.verbose, "Print training progress");
   sub->add_flag("--json", command->json, "End stdout with one JSON object (train and validation errors)");
   sub->callback([command] { command->run(); });

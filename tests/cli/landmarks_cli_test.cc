@@ -22,7 +22,7 @@ class LandmarkCommands : public ::testing::Test {
                         "--landmarks", "30", "--flip", "--json"});
     shape_ = run_bodyrec({"train-shape", (*dir_ / "set" / "train.xml").string(), "--out", (*dir_ / "shape.dat").string(),
                           "--method", "trees", "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
-                          "3", "--json"});
+                          "3", "--holdout-xml", (*dir_ / "val.xml").string(), "--json"});
   }
   static void TearDownTestSuite() { delete dir_; }
   static fs::path path(const std::string& name) { return *dir_ / name; }
@@ -54,6 +54,12 @@ TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
   EXPECT_EQ(t["validation"]["persons"], 4);  // source images 2 and 5 (P02, P06) with their mirrors
   EXPECT_LT(t["train"]["mean_px"].get<double>(), 20.0);
   EXPECT_GT(t["model_bytes"].get<int>(), 1000);
+  // --holdout-xml wrote the validation part: scoring it again gives the same figures.
+  const RunResult v = run_bodyrec({"eval", "landmarks", path("val.xml").string(), "--shape", path("shape.dat").string(),
+                                   "--json"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_EQ(last_json_line(v.out)["persons"], 4);
+  EXPECT_NEAR(last_json_line(v.out)["mean_px"].get<double>(), t["validation"]["mean_px"].get<double>(), 1e-9);
 
   const RunResult e = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
                                    path("shape.dat").string(), "--json"});
@@ -187,6 +193,13 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   EXPECT_TRUE(contains(r.err, "--method")) << r.err;
   r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--mot", path("m.txt").string()});
   EXPECT_EQ(r.exit_code, 2);
+  r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--mask-threshold", "0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "mask-net models only")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
+                   path("v.xml").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--holdout-every")) << r.err;
   // An output that cannot be written: processing error (4).
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("no/such/dir/x.dat").string(),
                    "--cascade-depth", "1", "--trees-per-level", "2"});

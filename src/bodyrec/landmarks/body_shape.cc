@@ -1,5 +1,6 @@
 #include "bodyrec/landmarks/body_shape.h"
 
+#include <cmath>
 #include <fstream>
 
 #include <dlib/opencv/cv_image.h>
@@ -45,6 +46,12 @@ BodyShapeModel::BodyShapeModel(BodyShapeModel&&) noexcept = default;
 int BodyShapeModel::landmarks() const { return impl_->landmarks; }
 BodyShapeModel::Kind BodyShapeModel::kind() const { return impl_->net ? Kind::kMaskNet : Kind::kTrees; }
 std::string BodyShapeModel::kind_name() const { return impl_->net ? "mask-net" : "trees"; }
+
+void BodyShapeModel::set_mask_threshold(double logit) {
+  if (!impl_->net) throw UsageError("--mask-threshold applies to mask-net models only (this one has regression trees)");
+  if (!std::isfinite(logit)) throw UsageError("--mask-threshold must be a finite logit");
+  impl_->net->set_threshold(logit);
+}
 
 cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
   const int wanted = impl_->net ? CV_8UC3 : CV_8UC1;

@@ -35,6 +35,9 @@ class BodyShapeModel {
   int landmarks() const;
   Kind kind() const;
   std::string kind_name() const;  // "trees" or "mask-net"
+  // Mask network only: the logit above which a pixel is body (the model file's value until changed).
+  // Throws UsageError for the trees or a value that is not finite.
+  void set_mask_threshold(double logit);
 
  private:
   friend class ShapeModelAccess;

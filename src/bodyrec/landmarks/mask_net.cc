@@ -277,6 +277,10 @@ void BodyMaskNet::save(std::ostream& out) const {
 
 cv::Size BodyMaskNet::input_size() const { return impl_->input; }
 double BodyMaskNet::threshold() const { return impl_->threshold; }
+void BodyMaskNet::set_threshold(double logit) {
+  CV_Assert(std::isfinite(logit));
+  impl_->threshold = logit;
+}
 
 cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
   CV_Assert(bgr.type() == CV_8UC3);

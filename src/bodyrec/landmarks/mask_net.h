@@ -55,6 +55,7 @@ class BodyMaskNet {
 
   cv::Size input_size() const;
   double threshold() const;
+  void set_threshold(double logit);  // REQUIRES: finite
 
  private:
   friend BodyMaskNet train_body_mask_net(const LandmarkDataset&, const MaskNetTrainOptions&);
