@@ -20,7 +20,7 @@ struct TrainShapeCommand {
   std::string train_xml, out;
   ShapeTrainOptions options;
   int holdout_every = 0;
-  std::string net_size = "32x96", seed, holdout_xml;
+  std::string net_size = "24x72", seed, holdout_xml;
   bool json = false;
 
   void run() {

@@ -19,8 +19,8 @@
 namespace bodyrec {
 
 struct MaskNetTrainOptions {
-  int input_width = 32;            // the box is resampled to input_width x input_height (multiples of 8)
-  int input_height = 96;
+  int input_width = 24;            // the box is resampled to input_width x input_height (multiples of 8)
+  int input_height = 72;
   int iterations = 3000;           // mini-batches
   int batch = 16;                  // crops per mini-batch
   double learning_rate = 3e-3;     // peak of the schedule (10 % warm-up, then cosine to ~0)
