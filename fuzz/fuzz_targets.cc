@@ -102,7 +102,9 @@ int fuzz_recording_meta(const uint8_t* data, size_t size) {
 int fuzz_recording_bodies(const uint8_t* data, size_t size) {
   return typed_errors_only([&] {
     const auto j = parse_json_text(text_of(data, size), "bodies/000000.json");
-    typed_errors_only([&] { bodies_from_json(j, "bodies/000000.json"); });
+    typed_errors_only([&] {
+      check_joint_positions(bodies_from_json(j, "bodies/000000.json"), kinect2_depth_intrinsics(), "bodies/000000.json");
+    });
     typed_errors_only([&] { truth_from_json(j, "truth/000000.json"); });
   });
 }
