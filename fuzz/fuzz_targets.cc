@@ -1,5 +1,7 @@
 #include "fuzz_targets.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -102,7 +104,9 @@ int fuzz_recording_meta(const uint8_t* data, size_t size) {
 int fuzz_recording_bodies(const uint8_t* data, size_t size) {
   return typed_errors_only([&] {
     const auto j = parse_json_text(text_of(data, size), "bodies/000000.json");
-    typed_errors_only([&] { bodies_from_json(j, "bodies/000000.json"); });
+    typed_errors_only([&] {
+      check_joint_positions(bodies_from_json(j, "bodies/000000.json"), kinect2_depth_intrinsics(), "bodies/000000.json");
+    });
     typed_errors_only([&] { truth_from_json(j, "truth/000000.json"); });
   });
 }
@@ -111,7 +115,9 @@ int fuzz_obsmat(const uint8_t* data, size_t size) {
   return typed_errors_only([&] {
     std::istringstream in(text_of(data, size));
     const auto rows = read_obsmat(in, "obsmat.txt");
-    estimate_seconds_per_frame(rows, "obsmat.txt");
+    // Its contract: a finite, positive period or an InputError; anything else is a finding.
+    const double period = estimate_seconds_per_frame(rows, "obsmat.txt");
+    if (!(period > 0 && std::isfinite(period))) std::abort();
   });
 }
 

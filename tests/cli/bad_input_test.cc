@@ -4,6 +4,8 @@
 
 #include <array>
 #include <filesystem>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -78,6 +80,12 @@ TEST(BadInput, UnreadableFilesNameTheFileAndKeepEarlierFrames) {
 
 TEST(BadInput, MissingAndZeroByteFilesNameTheFile) {
   TempDir dir;
+  expect_one_line_error(detect(dir / "none.avi", dir / "d.jsonl"), 3, "input not found: " + (dir / "none.avi").string());
+  for (const char* command : {"orient", "segment", "contour", "greenscreen"}) {
+    std::vector<std::string> args = {command, (dir / "none").string()};
+    if (std::string(command) == "greenscreen") args.insert(args.end(), {"--out", (dir / "cut").string()});
+    expect_one_line_error(run_bodyrec(args), 3, (dir / "none").string() + ": not a recording directory");
+  }
   write_text(dir / "zero.png", "");
   expect_one_line_error(detect(dir / "zero.png", dir / "d.jsonl"), 3, (dir / "zero.png").string() + ": empty file");
   write_text(dir / "zero.avi", "");
@@ -216,36 +224,69 @@ TEST(BadInput, BodyIndexAboveFiveNamesThePixel) {
   expect_frames_written(dir / "o.jsonl", 2);
 }
 
-// Skeleton joints nowhere near the camera's view (a million metres aside, at or behind the camera, 1e300):
-// nothing checks joints against the image, so the frame is processed like any other, without a warning;
-// what matters is no crash, no error and every frame written.
-TEST(BadInput, JointsFarOutsideTheFrameAreProcessedWithoutCrashing) {
+// Skeleton joints nowhere a depth camera could see them (a million metres aside, at or behind the camera,
+// 1e300 m away): the body file is broken like one with a zero quaternion, an input error naming the file,
+// the body and the joint, after the frames before it were written. Every command that reads the
+// recording stops the same way. Joints marked not tracked (0) carry no measurement and are not checked.
+TEST(BadInput, JointsFarOutsideTheFrameAreInputErrorsNamingTheJoint) {
   TempDir dir;
   const fs::path rec = recording_copy(dir);
   const fs::path bodies = rec / "bodies" / "000002.json";
   const nlohmann::json good = nlohmann::json::parse(read_text(bodies));
-  const std::vector<std::array<double, 3>> places = {{1e6, -1e6, 3}, {0.5, 0.2, 0}, {0.5, 0.2, -2}, {1e300, -1e300, 1e300}};
-  for (const auto& place : places) {
-    SCOPED_TRACE(nlohmann::json(place).dump());
+  const nlohmann::json meta = nlohmann::json::parse(read_text(rec / "meta.json"));
+  ASSERT_EQ(meta["depth_intrinsics"]["width"], 512);  // the messages below are for Kinect v2 intrinsics
+  ASSERT_EQ(meta["depth_intrinsics"]["fx"], 365.5);
+  const std::string joint = bodies.string() + ": bodies[0].joints[0] (SpineBase).position: tracked joint at ";
+  const std::vector<std::pair<std::array<double, 3>, std::string>> cases = {
+      {{1e6, -1e6, 3}, "(1e+06, -1e+06, 3) m projects to pixel (1.21834e+08, 1.21834e+08), more than the image's "
+                       "own size outside the 512x424 depth image"},
+      {{0.5, 0.2, 0}, "(0.5, 0.2, 0) m is at or behind the camera (Z must be > 0)"},
+      {{0.5, 0.2, -2}, "(0.5, 0.2, -2) m is at or behind the camera (Z must be > 0)"},
+      {{1e300, -1e300, 1e300}, "(1e+300, -1e+300, 1e+300) m is further than 20 m from the camera"},
+  };
+  const auto broken = [&](const std::array<double, 3>& place, int state) {
     nlohmann::json j = good;
-    for (auto& joint : j["bodies"][0]["joints"]) joint["position"] = place;
+    for (auto& jt : j["bodies"][0]["joints"]) {
+      jt["position"] = place;
+      jt["tracking_state"] = state;
+    }
     write_text(bodies, j.dump());
+  };
+  for (const auto& [place, what] : cases) {
+    SCOPED_TRACE(what);
+    broken(place, 2);
+    const std::string message = joint + what;
     RunResult r = run_bodyrec({"orient", rec.string(), "--jsonl", (dir / "o.jsonl").string(), "-q"});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.err, "");
-    expect_frames_written(dir / "o.jsonl", 4);
-    const auto frame2 = nlohmann::json::parse(lines_of(read_text(dir / "o.jsonl"))[2]);
-    EXPECT_EQ(frame2["bodies"].size(), 2u) << frame2;
+    expect_one_line_error(r, 3, message);
+    expect_frames_written(dir / "o.jsonl", 2);
     r = run_bodyrec({"contour", rec.string(), "--jsonl", (dir / "c.jsonl").string()});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    expect_frames_written(dir / "c.jsonl", 4);
-    r = run_bodyrec({"eval", "orient", rec.string()});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
+    expect_one_line_error(r, 3, message);
+    expect_frames_written(dir / "c.jsonl", 2);
+    expect_one_line_error(run_bodyrec({"eval", "orient", rec.string()}), 3, message);
     fs::remove_all(dir / "cut");
     r = run_bodyrec({"greenscreen", rec.string(), "--out", (dir / "cut").string()});
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_TRUE(fs::exists(dir / "cut" / "000002_body0.png"));
+    expect_one_line_error(r, 3, message);
+    EXPECT_TRUE(fs::exists(dir / "cut" / "000001_body0.png"));
+    EXPECT_FALSE(fs::exists(dir / "cut" / "000002_body0.png"));
+    r = run_bodyrec({"reid", rec.string(), "--gallery", (dir / "g.db").string(), "--jsonl",
+                     (dir / "r.jsonl").string(), "-q"});
+    expect_one_line_error(r, 3, message);
+    expect_frames_written(dir / "r.jsonl", 2);
   }
+  // An inferred joint says "inferred"; the first bad joint is the one named.
+  nlohmann::json j = good;
+  j["bodies"][1]["joints"][7]["position"] = {0.5, 0.2, -2};
+  j["bodies"][1]["joints"][7]["tracking_state"] = 1;
+  write_text(bodies, j.dump());
+  expect_one_line_error(run_bodyrec({"orient", rec.string()}), 3,
+                        bodies.string() + ": bodies[1].joints[7] (HandLeft).position: inferred joint at (0.5, 0.2, -2) m "
+                                          "is at or behind the camera");
+  // The same positions on joints marked not tracked: nothing was measured there, the frame is processed.
+  broken({1e6, -1e6, 3}, 0);
+  const RunResult r = run_bodyrec({"orient", rec.string(), "--jsonl", (dir / "o.jsonl").string(), "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  expect_frames_written(dir / "o.jsonl", 4);
 }
 
 // 500 ground-truth people in frame 1, none in frame 2, one in frame 3 (MOT frames are 1-based). The tracker

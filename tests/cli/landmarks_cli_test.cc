@@ -112,7 +112,9 @@ TEST_F(LandmarkCommands, TrainMaskNetThenLandmark) {
   const RunResult r = run_bodyrec({"landmark", path("set/images/P03.png").string(), "--shape", path("net.dat").string(),
                                    "--motion", "off", "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const auto& p : last_json_line(r.out)["people"]) EXPECT_EQ(p["landmarks"].size(), 30u);
+  // Kept in a variable: a range-for over last_json_line(...)["people"] walks a destroyed temporary (ASan).
+  const auto landmarked = last_json_line(r.out);
+  for (const auto& p : landmarked["people"]) EXPECT_EQ(p["landmarks"].size(), 30u);
 }
 
 TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {

@@ -111,7 +111,10 @@ double estimate_seconds_per_frame(const std::vector<ObsmatRow>& rows, const std:
       const ObsmatRow& p = *it->second;
       const double speed = std::hypot(r.velocity.x, r.velocity.y);
       const int gap = r.frame - p.frame;
-      if (speed > 0.3 && gap > 0) ratios.push_back(cv::norm(r.position - p.position) / (speed * gap));
+      // Positions or velocities near the double range overflow to inf (and inf / inf to NaN): such a sample
+      // says nothing about the frame period, and a NaN would break the median's ordering.
+      const double ratio = cv::norm(r.position - p.position) / (speed * gap);
+      if (speed > 0.3 && gap > 0 && std::isfinite(ratio)) ratios.push_back(ratio);
     }
     last[r.person] = &r;
   }
@@ -119,7 +122,13 @@ double estimate_seconds_per_frame(const std::vector<ObsmatRow>& rows, const std:
     throw InputError(where + ": too few moving samples (" + std::to_string(ratios.size()) +
                      ") to estimate the frame period; give it explicitly");
   std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  return ratios[ratios.size() / 2];
+  const double period = ratios[ratios.size() / 2];
+  // A period of 0 would put every frame at time 0 (positions that stay put while the velocities say the
+  // people move).
+  if (!(period > 0))
+    throw InputError(where + ": the frame period estimated from " + std::to_string(ratios.size()) +
+                     " moving samples is 0 (positions do not change while velocities say they do); give it explicitly");
+  return period;
 }
 
 WalkingScene read_walking_scene(const std::string& dir, double seconds_per_frame) {

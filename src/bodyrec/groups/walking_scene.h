@@ -49,7 +49,9 @@ struct WalkingScene {
 // The video frame period, from the data itself: the median over consecutive samples of one person of
 // |displacement| / (|velocity| * frame gap), over samples moving faster than 0.3 m/s. The EWAP/UCY
 // files do not state their frame rate in a common place (eth: 15 fps, hotel and zara: 25 fps; all are
-// annotated every 0.4 s). Throws InputError when fewer than 10 moving samples exist.
+// annotated every 0.4 s). Samples whose ratio overflows (positions near the double range) are skipped.
+// ENSURES: the result is finite and > 0. Throws InputError when fewer than 10 moving samples exist or
+// their median ratio is 0.
 double estimate_seconds_per_frame(const std::vector<ObsmatRow>& rows, const std::string& where);
 
 // Reads DIR/obsmat.txt and DIR/groups.txt. Groups may name people absent from obsmat (kept: they score

@@ -1,6 +1,9 @@
 // Parsers for EWAP/UCY obsmat.txt and groups.txt, including broken input.
 #include "bodyrec/groups/walking_scene.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "test_support.h"
@@ -88,6 +91,31 @@ TEST(ReadWalkingScene, EstimatesTheFramePeriodFromVelocitiesAndLabelsPairs) {
   EXPECT_EQ(read_walking_scene(dir.path().string(), 0.1).seconds_per_frame, 0.1);
   const std::string e = input_error([&] { read_walking_scene((dir / "nothing").string()); });
   EXPECT_TRUE(contains(e, "not a scene folder")) << e;
+}
+
+// Found reading the code behind the obsmat fuzz target: positions near the double range made ratios of
+// inf / inf = NaN that went into the median, and people standing still with non-zero velocities gave a
+// period of 0 (every frame at time 0). The period is now always finite and positive, or an InputError.
+TEST(EstimateSecondsPerFrame, SkipsOverflowingSamplesAndRefusesAZeroPeriod) {
+  std::vector<ObsmatRow> rows;
+  for (int k = 0; k < 12; ++k) {
+    rows.push_back({10 * k, 1, {0.6 * k, 0}, {1.5, 0}});                    // 0.04 s per frame
+    rows.push_back({10 * k, 5, {k % 2 ? 1e308 : -1e308, 0}, {1e308, 0}});  // |2e308| / inf: NaN
+    rows.push_back({10 * k, 6, {k % 2 ? 1e308 : -1e308, 0}, {1.5, 0}});    // inf / 15: inf
+  }
+  std::sort(rows.begin(), rows.end(), [](const ObsmatRow& a, const ObsmatRow& b) {
+    return a.frame != b.frame ? a.frame < b.frame : a.person < b.person;
+  });
+  EXPECT_NEAR(estimate_seconds_per_frame(rows, "obsmat.txt"), 0.04, 1e-12);
+
+  std::vector<ObsmatRow> still;
+  for (int k = 0; k < 12; ++k) still.push_back({10 * k, 1, {2, 3}, {1.5, 0}});
+  EXPECT_EQ(input_error([&] { estimate_seconds_per_frame(still, "obsmat.txt"); }),
+            "obsmat.txt: the frame period estimated from 11 moving samples is 0 (positions do not change while "
+            "velocities say they do); give it explicitly");
+  still.resize(10);
+  EXPECT_EQ(input_error([&] { estimate_seconds_per_frame(still, "obsmat.txt"); }),
+            "obsmat.txt: too few moving samples (9) to estimate the frame period; give it explicitly");
 }
 
 }  // namespace

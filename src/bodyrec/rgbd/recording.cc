@@ -2,6 +2,7 @@
 #include "bodyrec/rgbd/recording.h"
 
 #include <cstdio>
+#include <initializer_list>
 #include <filesystem>
 #include <fstream>
 
@@ -35,6 +36,18 @@ void check_image(const cv::Mat& image, int type, const Intrinsics& k, const std:
                      ", intrinsics say " + std::to_string(k.width) + "x" + std::to_string(k.height));
 }
 
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// "(1, -2.5, 3)"
+std::string numbers_text(std::initializer_list<double> values) {
+  std::string out;
+  for (const double v : values) out += (out.empty() ? "(" : ", ") + number_text(v);
+  return out + ")";
+}
 
 void write_file(const std::string& file, const std::string& text) {
   const std::string tmp = file + ".tmp";
@@ -60,6 +73,27 @@ void write_image(const std::string& file, const cv::Mat& image) {
 
 }  // namespace
 
+void check_joint_positions(const std::vector<Body>& bodies, const Intrinsics& depth, const std::string& file) {
+  for (size_t b = 0; b < bodies.size(); ++b)
+    for (int j = 0; j < kJointCount; ++j) {
+      const BodyJoint& joint = bodies[b].joints[static_cast<size_t>(j)];
+      if (joint.tracking_state == 0) continue;  // not tracked: the sensor measured nothing there
+      const cv::Vec3d& p = joint.position;
+      const std::string at = file + ": bodies[" + std::to_string(b) + "].joints[" + std::to_string(j) + "] (" +
+                             joint_names()[static_cast<size_t>(j)] + ").position: " +
+                             (joint.tracking_state == 2 ? "tracked" : "inferred") + " joint at " +
+                             numbers_text({p[0], p[1], p[2]}) + " m ";
+      if (!(p[2] > 0)) throw InputError(at + "is at or behind the camera (Z must be > 0)");
+      if (p[2] > kMaxJointDepthM)
+        throw InputError(at + "is further than " + number_text(kMaxJointDepthM) + " m from the camera");
+      const cv::Point2d px = *project(depth, p);
+      if (!(px.x >= -depth.width && px.x < 2.0 * depth.width && px.y >= -depth.height && px.y < 2.0 * depth.height))
+        throw InputError(at + "projects to pixel " + numbers_text({px.x, px.y}) + ", more than the image's own size " +
+                         "outside the " + std::to_string(depth.width) + "x" + std::to_string(depth.height) +
+                         " depth image");
+    }
+}
+
 std::string frame_stem(int index) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "%06d", index);
@@ -82,7 +116,10 @@ void validate_frame(const RgbdFrame& f, const RecordingMeta& m, const std::strin
     }
   }
   // Bodies passed in memory get the same checks as bodies read from JSON.
-  if (m.streams.bodies) bodies_from_json(bodies_to_json(f.bodies), where + " bodies");
+  if (m.streams.bodies) {
+    bodies_from_json(bodies_to_json(f.bodies), where + " bodies");
+    check_joint_positions(f.bodies, m.depth, where + " bodies");
+  }
   if (m.streams.truth && !f.truth) throw InputError(where + ": truth missing");
 }
 
@@ -128,6 +165,7 @@ RgbdFrame RecordingReader::read_frame(int index) const {
   if (meta_.streams.bodies) {
     const std::string file = (d / "bodies" / (stem + ".json")).string();
     f.bodies = bodies_from_json(read_json_file(file), file);
+    check_joint_positions(f.bodies, meta_.depth, file);
   }
   if (meta_.streams.truth) {
     const std::string file = (d / "truth" / (stem + ".json")).string();

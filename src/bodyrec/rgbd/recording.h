@@ -1,7 +1,8 @@
 // The bodyrec RGB-D recording: a directory with meta.json and per-frame colour, depth, body index,
 // bodies and truth files (docs/recording-format.md is the full specification). RecordingReader yields
 // RgbdFrame one by one like io/frame_source; RecordingWriter writes them. Both validate: image sizes
-// against the intrinsics, the format version, body slots 0..5, quaternions finite and non-zero; every
+// against the intrinsics, the format version, body slots 0..5, quaternions finite and non-zero, tracked
+// joints in front of the camera and near its image (check_joint_positions); every
 // error is an InputError (ProcessingError when writing fails) whose one-line message names the file and
 // the field.
 //
@@ -102,8 +103,19 @@ nlohmann::json read_json_file(const std::string& file);
 // Parses JSON text; InputError naming `name` when it is not JSON.
 nlohmann::json parse_json_text(const std::string& text, const std::string& name);
 
+// Farthest depth of a tracked or inferred joint that check_joint_positions accepts. Body trackers see people
+// to about 4.5 m (Kinect v2; its depth reaches 8 m): a joint beyond this is a broken skeleton, not a person.
+constexpr double kMaxJointDepthM = 20;
+
+// Checks that every joint the sensor tracked or inferred (tracking_state 1 or 2) is where a depth camera
+// could have seen it: in front of the camera (Z > 0), at most kMaxJointDepthM away, and projecting into
+// the depth image widened by its own size on every side (a hand inferred just past the edge passes; a
+// joint 10^6 m aside does not). Joints not tracked (0) are not checked. Throws InputError
+// "FILE: bodies[B].joints[J] (Name).position: tracked joint at (x, y, z) m ..." naming the first bad joint.
+void check_joint_positions(const std::vector<Body>& bodies, const Intrinsics& depth, const std::string& file);
+
 // Checks one frame's images against the meta (types, sizes, body index values) and its bodies (slots,
-// unique, quaternions). Throws InputError naming `where` and the field.
+// unique, quaternions, joint positions). Throws InputError naming `where` and the field.
 void validate_frame(const RgbdFrame& frame, const RecordingMeta& meta, const std::string& where);
 
 // "000042": the zero-padded file stem of frame 42.

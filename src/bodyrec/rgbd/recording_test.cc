@@ -226,6 +226,70 @@ TEST(RecordingBodies, BrokenFieldsAreNamed) {
   EXPECT_EQ(bodies_error(json::object()), "b.json: bodies: missing");
 }
 
+std::string joints_error(const std::vector<Body>& bodies) {
+  return input_error([&] { check_joint_positions(bodies, kinect2_depth_intrinsics(), "b.json"); });
+}
+
+// Tracked and inferred joints must be where the depth camera could see them; the limits are Z > 0,
+// Z <= 20 m and the depth image widened by its own size (512x424: u in [-512, 1024), v in [-424, 848)).
+TEST(RecordingBodies, JointsNoCameraCouldSeeAreNamed) {
+  Body b = sample_body(0);  // joints at Z = 2.5 m, up to 2.4 m aside: u up to 606, inside the widened image
+  EXPECT_NO_THROW(check_joint_positions({b}, kinect2_depth_intrinsics(), "b.json"));
+  const auto with = [&](int joint, cv::Vec3d p, int state) {
+    Body c = sample_body(0);
+    c.joints[static_cast<size_t>(joint)].position = p;
+    c.joints[static_cast<size_t>(joint)].tracking_state = state;
+    return std::vector<Body>{sample_body(1), c};
+  };
+  EXPECT_EQ(joints_error(with(3, {0.1, 0.2, 0}, 2)),
+            "b.json: bodies[1].joints[3] (Head).position: tracked joint at (0.1, 0.2, 0) m is at or behind the camera "
+            "(Z must be > 0)");
+  EXPECT_EQ(joints_error(with(4, {0.1, 0.2, -1.5}, 1)),
+            "b.json: bodies[1].joints[4] (ShoulderLeft).position: inferred joint at (0.1, 0.2, -1.5) m is at or behind "
+            "the camera (Z must be > 0)");
+  EXPECT_EQ(joints_error(with(0, {0, 0, 20.5}, 2)),
+            "b.json: bodies[1].joints[0] (SpineBase).position: tracked joint at (0, 0, 20.5) m is further than 20 m "
+            "from the camera");
+  EXPECT_NO_THROW(check_joint_positions(with(0, {0, 0, 20}, 2), kinect2_depth_intrinsics(), "b.json"));
+  // u = 255.5 + 365.5 * X / Z: X = 5.2 at Z = 2 gives 1205.8, beyond 1024; X = 3.9 gives 968.2, inside.
+  EXPECT_EQ(joints_error(with(7, {5.2, 0, 2}, 1)),
+            "b.json: bodies[1].joints[7] (HandLeft).position: inferred joint at (5.2, 0, 2) m projects to pixel "
+            "(1205.8, 211.5), more than the image's own size outside the 512x424 depth image");
+  EXPECT_NO_THROW(check_joint_positions(with(7, {3.9, 0, 2}, 1), kinect2_depth_intrinsics(), "b.json"));
+  EXPECT_NO_THROW(check_joint_positions(with(7, {-2.9, 0, 2}, 2), kinect2_depth_intrinsics(), "b.json"));  // u -274
+  EXPECT_TRUE(contains(joints_error(with(7, {-4.3, 0, 2}, 2)), "projects to pixel (-530.325, 211.5)"));
+  EXPECT_TRUE(contains(joints_error(with(7, {0, 5, 2}, 2)), "projects to pixel (255.5, -702.25)"));
+  EXPECT_TRUE(contains(joints_error(with(7, {1e6, -1e6, 3}, 2)), "projects to pixel (1.21834e+08, 1.21834e+08)"));
+  // Not tracked: any finite position passes (the sensor measured nothing there).
+  EXPECT_NO_THROW(check_joint_positions(with(7, {1e6, -1e6, -3}, 0), kinect2_depth_intrinsics(), "b.json"));
+}
+
+TEST(Recording, WriterAndReaderRefuseJointsNoCameraCouldSee) {
+  TempDir dir;
+  const RecordingMeta m = small_meta();  // 8x6 depth image, fx 5: u = 3.5 + 5 X / Z
+  RgbdFrame f = sample_frame(m, 0);
+  f.bodies[1].joints[2].position = {0, 0, -1};
+  {
+    RecordingWriter w((dir / "w").string(), m);
+    EXPECT_TRUE(contains(input_error([&] { w.write(f); }),
+                         (dir / "w").string() + " frame 0 bodies: bodies[1].joints[2] (Neck).position: tracked joint at "
+                                                "(0, 0, -1) m is at or behind the camera"));
+    EXPECT_EQ(w.frame_count(), 0);
+  }
+  // A file written by something else is refused by the reader, naming the file.
+  {
+    RecordingWriter w((dir / "r").string(), m);
+    w.write(sample_frame(m, 0));
+  }
+  const auto file = dir / "r" / "bodies" / "000000.json";
+  json j = json::parse(bodyrec::testing::read_text(file));
+  j["bodies"][0]["joints"][24]["position"] = {30, 0, 2};
+  write_text(file, j.dump());
+  EXPECT_EQ(input_error([&] { RecordingReader((dir / "r").string()).read_frame(0); }),
+            file.string() + ": bodies[0].joints[24] (ThumbRight).position: tracked joint at (30, 0, 2) m projects to "
+                            "pixel (78.5, 2.5), more than the image's own size outside the 8x6 depth image");
+}
+
 std::string truth_error(const json& j) { return input_error([&] { truth_from_json(j, "t.json"); }); }
 
 TEST(RecordingTruth, BrokenFieldsAreNamed) {
