@@ -65,15 +65,16 @@ void BM_ShapeFitPerPerson(benchmark::State& state) {
   const auto model = shape_model(state);
   if (!model) return;
   const auto& images = images_640x480();
-  std::vector<cv::Mat> gray;
-  for (const auto& image : images) gray.push_back(bodyrec::BodyShapeModel::prepare(image));
+  std::vector<cv::Mat> prepared;
+  for (const auto& image : images) prepared.push_back(model->prepare(image));
   const bodyrec::Box box(250, 60, 140, 360);  // a person-sized box in the middle of the frame
   size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(model->fit(gray[i], box));
-    i = (i + 1) % gray.size();
+    benchmark::DoNotOptimize(model->fit(prepared[i], box));
+    i = (i + 1) % prepared.size();
   }
   state.counters["landmarks"] = model->landmarks();
+  state.SetLabel(model->kind_name());
 }
 
 void detect_and_fit(benchmark::State& state, bodyrec::PeopleDetector& detector) {
@@ -84,12 +85,13 @@ void detect_and_fit(benchmark::State& state, bodyrec::PeopleDetector& detector) 
   size_t i = 0, people = 0;
   for (auto _ : state) {
     const auto found = detector.detect(images[i]);
-    const cv::Mat gray = bodyrec::BodyShapeModel::prepare(images[i]);
-    for (const auto& d : found) benchmark::DoNotOptimize(model->fit(gray, d.box));
+    const cv::Mat prepared = model->prepare(images[i]);
+    for (const auto& d : found) benchmark::DoNotOptimize(model->fit(prepared, d.box));
     people += found.size();
     i = (i + 1) % images.size();
   }
   state.counters["people_per_image"] = static_cast<double>(people) / static_cast<double>(state.iterations());
+  state.SetLabel(model->kind_name());
   state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 

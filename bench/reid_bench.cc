@@ -25,13 +25,33 @@ bodyrec::PersonImage body(int seed, cv::Size size) {
   return p;
 }
 
+// One LOMO feature (Retinex colours); third argument 1: averaged with the mirror image's (LomoOptions::mirror).
 void BM_LomoFeatures(benchmark::State& state) {
   const cv::Size size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   bodyrec::PersonImage image = body(1, size);
   if (size.width == 48) image.mask = cv::Mat();  // VIPeR has no masks
-  for (auto _ : state) benchmark::DoNotOptimize(bodyrec::lomo_features(image));
+  bodyrec::LomoOptions options;
+  options.mirror = state.range(2) != 0;
+  for (auto _ : state) benchmark::DoNotOptimize(bodyrec::lomo_features(image, options));
 }
-BENCHMARK(BM_LomoFeatures)->Args({48, 128})->Args({100, 250})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_LomoFeatures)
+    ->Args({48, 128, 0})
+    ->Args({48, 128, 1})
+    ->Args({100, 250, 0})
+    ->Args({100, 250, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// What the default matcher computes per image before its model: LOMO twice (plain and Retinex colours),
+// each mirror-averaged.
+void BM_DefaultMatcherFeatures(benchmark::State& state) {
+  const cv::Size size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  bodyrec::PersonImage image = body(1, size);
+  if (size.width == 48) image.mask = cv::Mat();
+  const auto matcher = bodyrec::make_matcher("default");
+  for (auto _ : state) benchmark::DoNotOptimize(matcher->features(image));
+}
+BENCHMARK(BM_DefaultMatcherFeatures)->Args({48, 128})->Args({100, 250})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // XQDA embedding of one LOMO feature (a random projection of the size VIPeR training gives).
 void BM_XqdaEmbed(benchmark::State& state) {

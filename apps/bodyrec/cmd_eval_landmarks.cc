@@ -1,5 +1,6 @@
 // `bodyrec eval landmarks`: landmark error of a shape model inside the ground-truth boxes of an imglab set.
 #include <cstdio>
+#include <optional>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/sinks.h"
@@ -14,10 +15,12 @@ namespace {
 
 struct EvalLandmarksCommand {
   std::string xml, shape, per_person;
+  std::optional<double> mask_threshold;
   bool json = false;
 
   void run() const {
-    const BodyShapeModel model(shape);
+    BodyShapeModel model(shape);
+    if (mask_threshold) model.set_mask_threshold(*mask_threshold);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
     std::vector<PersonLandmarkError> errors;
@@ -49,6 +52,9 @@ void add(CLI::App& eval) {
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
   sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  sub->add_option("--mask-threshold", command->mask_threshold,
+                  "mask-net models: score with this logit threshold instead of the model's (for tuning on a "
+                  "held-out set)");
   sub->add_option("--per-person", command->per_person,
                   "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "
                   "contour_px); `bodyrec report --eval FILE` draws their histogram");

@@ -42,9 +42,9 @@ struct LandmarkCommand {
       const auto t0 = std::chrono::steady_clock::now();
       const std::vector<Detection> detections = people->detect(frame.image);
       const auto t1 = std::chrono::steady_clock::now();
-      const cv::Mat gray = BodyShapeModel::prepare(frame.image);
+      const cv::Mat prepared = model.prepare(frame.image);
       std::vector<std::vector<cv::Point2d>> shapes;
-      for (const auto& d : detections) shapes.push_back(model.fit(gray, d.box));
+      for (const auto& d : detections) shapes.push_back(model.fit(prepared, d.box));
       const auto t2 = std::chrono::steady_clock::now();
       detect_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();
       fit_ms += std::chrono::duration<double, std::milli>(t2 - t1).count();

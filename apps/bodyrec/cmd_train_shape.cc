@@ -1,4 +1,5 @@
-// `bodyrec train-shape`: the 180-landmark body shape predictor (dlib regression-tree ensemble, thesis Ch3).
+// `bodyrec train-shape`: the 180-landmark body shape model: the per-pixel body mask network (default) or
+// the thesis's dlib regression-tree ensemble (Ch3).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -19,10 +20,13 @@ struct TrainShapeCommand {
   std::string train_xml, out;
   ShapeTrainOptions options;
   int holdout_every = 0;
+  std::string net_size = "32x96", seed, holdout_xml;
   bool json = false;
 
-  void run() const {
+  void run() {
     if (holdout_every == 1) throw UsageError("--holdout-every must be 0 (off) or >= 2");
+    parse_net_options();
+    options.check();
     require_output_folder(out);  // fail before a long training run, not after
     LandmarkDataset all = load_landmark_dataset(train_xml);
     if (all.landmarks == 0) throw InputError(train_xml + ": no box has landmarks (<part> elements)");
@@ -39,15 +43,19 @@ struct TrainShapeCommand {
           holdout_every > 0 && group % static_cast<size_t>(holdout_every) == static_cast<size_t>(holdout_every - 1);
       (held_out ? validation : train).images.push_back(std::move(image));
     }
+    if (!holdout_xml.empty()) {
+      if (validation.images.empty()) throw UsageError("--holdout-xml needs --holdout-every K");
+      write_landmark_dataset(validation, holdout_xml, "validation part of " + train_xml);
+    }
     const auto t0 = std::chrono::steady_clock::now();
     const BodyShapeModel model = train_body_shape(train, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     save_body_shape(model, out);
-    std::printf("trained on    %d images, %d landmarks per person, %.1f s (%d threads)\n",
-                static_cast<int>(train.images.size()), model.landmarks(), seconds, options.threads);
+    std::printf("trained on    %d images, %d landmarks per person, %s, %.1f s\n", static_cast<int>(train.images.size()),
+                model.landmarks(), model.kind_name().c_str(), seconds);
     const LandmarkScores t = evaluate_body_shape(model, train, train_xml);
     print_landmark_scores("training error", t);
-    nlohmann::json j = {{"train", landmark_scores_json(t)}, {"seconds", seconds}};
+    nlohmann::json j = {{"train", landmark_scores_json(t)}, {"seconds", seconds}, {"method", model.kind_name()}};
     if (!validation.images.empty()) {
       const LandmarkScores v = evaluate_body_shape(model, validation, train_xml);
       print_landmark_scores("validation error (every " + std::to_string(holdout_every) + "th source image held out)", v);
@@ -58,34 +66,74 @@ struct TrainShapeCommand {
     j["model_bytes"] = bytes;
     if (json) std::printf("%s\n", j.dump().c_str());
   }
+
+  // --net-size WxH and --seed (text for dlib's trees, an integer for the network's augmentation draws).
+  void parse_net_options() {
+    const auto x = net_size.find('x');
+    const auto whole_int = [](const std::string& s, int& value) {
+      if (s.empty() || s.size() > 5 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+      value = std::stoi(s);
+      return true;
+    };
+    if (x == std::string::npos || !whole_int(net_size.substr(0, x), options.net.input_width) ||
+        !whole_int(net_size.substr(x + 1), options.net.input_height))
+      throw UsageError("--net-size must be WxH, e.g. 32x96 (got '" + net_size + "')");
+    options.seed = seed;
+    if (options.method == "mask-net" && !seed.empty()) {
+      if (seed.size() > 9 || seed.find_first_not_of("0123456789") != std::string::npos)
+        throw UsageError("--seed must be a whole number below 10^9 with --method mask-net (got '" + seed + "')");
+      options.net.seed = static_cast<unsigned>(std::stoul(seed));
+    }
+  }
 };
 
 void add(CLI::App& app) {
   auto command = std::make_shared<TrainShapeCommand>();
-  CLI::App* sub = app.add_subcommand("train-shape", "Train the body-contour shape predictor from imglab landmarks");
+  CLI::App* sub = app.add_subcommand("train-shape", "Train the body-contour shape model from imglab landmarks");
   sub->footer(
-      "The thesis used --oversampling 500 --nu 0.05 --tree-depth 2 and dlib's other defaults.\n"
-      "Tuned on Penn-Fudan (docs/benchmarks.md): --oversampling 40 --trees-per-level 100.\n"
-      "Example: bodyrec train-shape out/contours/train.xml --out out/shape.dat --oversampling 40 --trees-per-level 100");
+      "mask-net (default): a small U-Net labels each pixel of the box as body or not; the landmarks are that\n"
+      "mask's outline, numbered like the training contours (point 0 at the head top, clockwise, equal arc\n"
+      "length). Its target masks are the filled landmark polygons. Threads come from the BLAS library\n"
+      "(OPENBLAS_NUM_THREADS). trees: the thesis's dlib regression trees; the thesis used --oversampling 500\n"
+      "--nu 0.05 --tree-depth 2 and dlib's other defaults; tuned on Penn-Fudan: --oversampling 40\n"
+      "--trees-per-level 100. Figures for both: docs/benchmarks.md.\n"
+      "Example: bodyrec train-shape out/contours/train.xml --out out/shape.dat\n"
+      "         bodyrec train-shape out/contours/train.xml --out out/trees.dat --method trees --oversampling 40 --trees-per-level 100");
   sub->add_option("train", command->train_xml, "Training set: imglab XML with numbered <part>s per box")->required();
-  sub->add_option("--out", command->out, "Shape model file to write (dlib shape_predictor)")->required();
+  sub->add_option("--out", command->out, "Shape model file to write")->required();
   auto& o = command->options;
-  sub->add_option("--oversampling", o.oversampling, "Random initial shapes per person")->capture_default_str();
-  sub->add_option("--nu", o.nu, "Learning rate (shrinkage)")->capture_default_str();
-  sub->add_option("--tree-depth", o.tree_depth, "Depth of each regression tree")->capture_default_str();
-  sub->add_option("--cascade-depth", o.cascade_depth, "Cascade levels")->capture_default_str();
-  sub->add_option("--trees-per-level", o.trees_per_level, "Trees per cascade level")->capture_default_str();
-  sub->add_option("--feature-pool-size", o.feature_pool_size, "Candidate pixels per cascade level")
+  sub->add_option("--method", o.method, "mask-net (per-pixel body mask, then its outline) or trees (the thesis's)")
       ->capture_default_str();
-  sub->add_option("--test-splits", o.test_splits, "Random split tests tried per tree node")->capture_default_str();
-  sub->add_option("--lambda", o.lambda, "Prior favouring nearby pixel pairs in split tests")->capture_default_str();
-  sub->add_option("--padding", o.padding, "Grow the feature pool region by this fraction")->capture_default_str();
-  sub->add_option("--threads", o.threads, "Training threads")->capture_default_str();
-  sub->add_option("--seed", o.seed, "Random seed (default: dlib's fixed seed)");
+  sub->add_option("--net-size", command->net_size, "mask-net: the box is resampled to WxH (multiples of 8)")
+      ->capture_default_str();
+  sub->add_option("--iterations", o.net.iterations, "mask-net: training mini-batches")->capture_default_str();
+  sub->add_option("--batch", o.net.batch, "mask-net: crops per mini-batch")->capture_default_str();
+  sub->add_option("--learning-rate", o.net.learning_rate, "mask-net: peak learning rate (Adam; warm-up, then cosine)")
+      ->capture_default_str();
+  sub->add_option("--mask-threshold", o.net.threshold, "mask-net: logit above which a pixel is body (kept in the model)")
+      ->capture_default_str();
+  sub->add_option("--box-jitter", o.net.box_jitter, "mask-net: std-dev of random box shifts and size changes (fraction)")
+      ->capture_default_str();
+  sub->add_option("--oversampling", o.oversampling, "trees: random initial shapes per person")->capture_default_str();
+  sub->add_option("--nu", o.nu, "trees: learning rate (shrinkage)")->capture_default_str();
+  sub->add_option("--tree-depth", o.tree_depth, "trees: depth of each regression tree")->capture_default_str();
+  sub->add_option("--cascade-depth", o.cascade_depth, "trees: cascade levels")->capture_default_str();
+  sub->add_option("--trees-per-level", o.trees_per_level, "trees: trees per cascade level")->capture_default_str();
+  sub->add_option("--feature-pool-size", o.feature_pool_size, "trees: candidate pixels per cascade level")
+      ->capture_default_str();
+  sub->add_option("--test-splits", o.test_splits, "trees: random split tests tried per tree node")->capture_default_str();
+  sub->add_option("--lambda", o.lambda, "trees: prior favouring nearby pixel pairs in split tests")->capture_default_str();
+  sub->add_option("--padding", o.padding, "trees: grow the feature pool region by this fraction")->capture_default_str();
+  sub->add_option("--threads", o.threads, "trees: training threads")->capture_default_str();
+  sub->add_option("--seed", command->seed,
+                  "Random seed (trees: any text, default dlib's fixed seed; mask-net: a whole number, default 0)");
   sub->add_option("--holdout-every", command->holdout_every,
                   "Hold out every Kth source image (index % K == K-1, mirrored copies with their original) for validation; 0 = none")
       ->capture_default_str();
-  sub->add_flag("--verbose", o.verbose, "Print dlib's training progress");
+  sub->add_option("--holdout-xml", command->holdout_xml,
+                  "Write the held-out images as imglab XML (absolute image paths), to score them again with "
+                  "`eval landmarks`");
+  sub->add_flag("--verbose", o.verbose, "Print training progress");
   sub->add_flag("--json", command->json, "End stdout with one JSON object (train and validation errors)");
   sub->callback([command] { command->run(); });
 }

@@ -21,8 +21,8 @@ class LandmarkCommands : public ::testing::Test {
     set_ = run_bodyrec({"make-contour-set", "--pennfudan", (*dir_ / "pf").string(), "--out", (*dir_ / "set").string(),
                         "--landmarks", "30", "--flip", "--json"});
     shape_ = run_bodyrec({"train-shape", (*dir_ / "set" / "train.xml").string(), "--out", (*dir_ / "shape.dat").string(),
-                          "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
-                          "3", "--json"});
+                          "--method", "trees", "--cascade-depth", "4", "--trees-per-level", "30", "--oversampling", "5", "--holdout-every",
+                          "3", "--holdout-xml", (*dir_ / "val.xml").string(), "--json"});
   }
   static void TearDownTestSuite() { delete dir_; }
   static fs::path path(const std::string& name) { return *dir_ / name; }
@@ -54,6 +54,12 @@ TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
   EXPECT_EQ(t["validation"]["persons"], 4);  // source images 2 and 5 (P02, P06) with their mirrors
   EXPECT_LT(t["train"]["mean_px"].get<double>(), 20.0);
   EXPECT_GT(t["model_bytes"].get<int>(), 1000);
+  // --holdout-xml wrote the validation part: scoring it again gives the same figures.
+  const RunResult v = run_bodyrec({"eval", "landmarks", path("val.xml").string(), "--shape", path("shape.dat").string(),
+                                   "--json"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  EXPECT_EQ(last_json_line(v.out)["persons"], 4);
+  EXPECT_NEAR(last_json_line(v.out)["mean_px"].get<double>(), t["validation"]["mean_px"].get<double>(), 1e-9);
 
   const RunResult e = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
                                    path("shape.dat").string(), "--json"});
@@ -86,6 +92,27 @@ TEST_F(LandmarkCommands, TrainShapeAndEvalLandmarks) {
   EXPECT_EQ(persons, 2);
   EXPECT_NEAR(sum_px / persons, j["mean_px"].get<double>(), 1e-9);
   EXPECT_NEAR(sum_rel / persons, j["mean_rel_height"].get<double>(), 1e-9);
+}
+
+// The default method: the body mask network (a short run, on the same drawn people).
+TEST_F(LandmarkCommands, TrainMaskNetThenLandmark) {
+  const RunResult t = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("net.dat").string(),
+                                   "--iterations", "80", "--net-size", "24x64", "--batch", "8", "--json"});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const auto j = last_json_line(t.out);
+  EXPECT_EQ(j["method"], "mask-net");
+  EXPECT_EQ(j["train"]["persons"], 12);  // 6 people and their mirrors
+  EXPECT_LT(j["model_bytes"].get<int>(), 1000000);  // ~53 000 weights
+  const RunResult e = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                   path("net.dat").string(), "--json"});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(last_json_line(e.out)["persons"], 2);
+  EXPECT_LT(last_json_line(e.out)["mean_px"].get<double>(), 40.0);  // 150 px people after 80 mini-batches
+  // The commands that read a shape model take either kind.
+  const RunResult r = run_bodyrec({"landmark", path("set/images/P03.png").string(), "--shape", path("net.dat").string(),
+                                   "--motion", "off", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& p : last_json_line(r.out)["people"]) EXPECT_EQ(p["landmarks"].size(), 30u);
 }
 
 TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {
@@ -139,7 +166,7 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   EXPECT_TRUE(contains(r.err, "3 landmarks per box, the model 30")) << r.err;
   r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", path("set/train.xml").string()});
   EXPECT_EQ(r.exit_code, 3);
-  EXPECT_TRUE(contains(r.err, "not a dlib shape predictor")) << r.err;
+  EXPECT_TRUE(contains(r.err, "neither a dlib shape predictor nor a bodyrec mask-net model")) << r.err;
   r = run_bodyrec({"make-contour-set", "--pennfudan", path("nowhere").string(), "--out", path("o").string()});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "nowhere")) << r.err;
@@ -152,8 +179,27 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--nu", "0"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--nu")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--net-size", "30x90"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--net-size")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--net-size", "32"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--net-size must be WxH")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--seed", "abc"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--seed")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--method", "svm"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--method")) << r.err;
   r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--mot", path("m.txt").string()});
   EXPECT_EQ(r.exit_code, 2);
+  r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--mask-threshold", "0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "mask-net models only")) << r.err;
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
+                   path("v.xml").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--holdout-every")) << r.err;
   // An output that cannot be written: processing error (4).
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("no/such/dir/x.dat").string(),
                    "--cascade-depth", "1", "--trees-per-level", "2"});

@@ -19,8 +19,8 @@ fs::path tiny_180_landmark_model(const TempDir& dir) {
                                      (dir / "set").string(), "--landmarks", "180"});
   EXPECT_EQ(set.exit_code, 0) << set.err;
   const RunResult shape = run_bodyrec({"train-shape", (dir / "set" / "train.xml").string(), "--out",
-                                       (dir / "shape.dat").string(), "--cascade-depth", "2", "--trees-per-level", "10",
-                                       "--oversampling", "2"});
+                                       (dir / "shape.dat").string(), "--method", "trees", "--cascade-depth", "2",
+                                       "--trees-per-level", "10", "--oversampling", "2"});
   EXPECT_EQ(shape.exit_code, 0) << shape.err;
   return dir / "shape.dat";
 }

@@ -20,6 +20,21 @@ cv::Mat scene(const std::optional<Box>& box, int seed) {
   return img;
 }
 
+// The same scene with a person of 6 px blocks of fixed random dark or light grey: a regular checker board
+// has a correlation peak every period, and which of them wins then depends on floating-point rounding
+// (it changed with the BLAS library), so tests of the tracked position use this one.
+cv::Mat random_block_scene(const Box& box, int seed) {
+  cv::Mat img = scene(std::nullopt, seed);
+  const cv::Rect r(box);
+  cv::RNG texture(7);
+  cv::Mat blocks(r.height / 6 + 1, r.width / 6 + 1, CV_8UC1);
+  for (int i = 0; i < blocks.rows; ++i)
+    for (int j = 0; j < blocks.cols; ++j) blocks.at<uchar>(i, j) = texture.uniform(0, 2) ? 230 : 20;
+  for (int y = r.y; y < r.y + r.height; ++y)
+    for (int x = r.x; x < r.x + r.width; ++x) img.at<uchar>(y, x) = blocks.at<uchar>((y - r.y) / 6, (x - r.x) / 6);
+  return img;
+}
+
 TrackedPerson track(int id, const Box& box, int since_match = 0) {
   TrackedPerson t;
   t.id = id;
@@ -32,13 +47,13 @@ TrackedPerson track(int id, const Box& box, int since_match = 0) {
 TEST(LeaderTracker, FollowsTheLeaderThroughDetectorMisses) {
   LeaderTracker leader;
   Box box(50, 60, 36, 90);
-  auto s = leader.update(scene(box, 0), {track(3, box)}, 3);
+  auto s = leader.update(random_block_scene(box, 0), {track(3, box)}, 3);
   EXPECT_EQ(s.state, LeaderState::kTracking);
   EXPECT_EQ(s.track_id, 3);
   // Five frames of walking right with no detection (the track coasts on its prediction, off by 10 px).
   for (int f = 1; f <= 5; ++f) {
     box.x += 4;
-    s = leader.update(scene(box, f), {track(3, Box(box.x - 10, box.y, 36, 90), f)}, 3);
+    s = leader.update(random_block_scene(box, f), {track(3, Box(box.x - 10, box.y, 36, 90), f)}, 3);
     ASSERT_EQ(s.state, LeaderState::kTracking) << f;
     EXPECT_GT(s.psr, 6.0);
     EXPECT_NEAR(s.box.x, box.x, 3.0) << f;  // the DSST box, not the coasting prediction

@@ -1,6 +1,7 @@
-// The body shape predictor (thesis Ch3): dlib's ensemble of regression trees (Kazemi & Sullivan 2014)
-// placing the contour landmarks inside a person's box. Loading and fitting here; training in
-// shape_training.h, so fitting does not need the trainer.
+// The body shape model (thesis Ch3): N contour landmarks of the person inside a box. Two kinds, told apart
+// by the model file: the thesis's dlib ensemble of regression trees (Kazemi & Sullivan 2014; grey image)
+// and bodyrec's per-pixel body mask network (mask_net.h; colour image), whose landmarks are the mask's
+// outline numbered like the training contours. Loading and fitting here; training in shape_training.h.
 #pragma once
 
 #include <memory>
@@ -13,19 +14,30 @@
 
 namespace bodyrec {
 
+class BodyMaskNet;
+
 class BodyShapeModel {
  public:
-  // Loads a dlib shape_predictor file (`bodyrec train-shape`, dlib's own trainer). Throws InputError
-  // naming the file when it is missing or not a shape predictor.
+  enum class Kind { kTrees, kMaskNet };
+
+  // Loads a model written by `bodyrec train-shape` (either kind) or any dlib shape_predictor file. Throws
+  // InputError naming the file when it is missing, truncated or neither kind.
   explicit BodyShapeModel(const std::string& path);
   ~BodyShapeModel();
   BodyShapeModel(BodyShapeModel&&) noexcept;
 
-  // Landmarks of the person in `box` of `gray` (CV_8UC1; convert BGR frames once with prepare()).
-  std::vector<cv::Point2d> fit(const cv::Mat& gray, const Box& box) const;
-  // The grey image fit() expects (a view when `image` is already CV_8UC1).
-  static cv::Mat prepare(const cv::Mat& image);
+  // Landmarks of the person in `box` of `image`, which must come from prepare() (convert each frame
+  // once). Not thread-safe: use one model per thread.
+  std::vector<cv::Point2d> fit(const cv::Mat& image, const Box& box) const;
+  // The image fit() expects from a BGR, BGRA or grey frame: grey for the trees, BGR for the mask network
+  // (a view when `image` already is one).
+  cv::Mat prepare(const cv::Mat& image) const;
   int landmarks() const;
+  Kind kind() const;
+  std::string kind_name() const;  // "trees" or "mask-net"
+  // Mask network only: the logit above which a pixel is body (the model file's value until changed).
+  // Throws UsageError for the trees or a value that is not finite.
+  void set_mask_threshold(double logit);
 
  private:
   friend class ShapeModelAccess;

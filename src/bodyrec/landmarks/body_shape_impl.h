@@ -1,16 +1,21 @@
-// Internal: the dlib types behind BodyShapeModel, shared by body_shape.cc and shape_training.cc only.
+// Internal: what is behind BodyShapeModel, shared by body_shape.cc and shape_training.cc only.
 #pragma once
+
+#include <memory>
 
 #include <dlib/image_processing/shape_predictor.h>
 #include <opencv2/core/mat.hpp>
 
 #include "bodyrec/core/geometry.h"
 #include "bodyrec/landmarks/body_shape.h"
+#include "bodyrec/landmarks/mask_net.h"
 
 namespace bodyrec {
 
 struct BodyShapeModel::Impl {
-  dlib::shape_predictor predictor;
+  dlib::shape_predictor predictor;  // kind kTrees
+  std::unique_ptr<BodyMaskNet> net;  // kind kMaskNet (when set)
+  int landmarks = 0;
 };
 
 inline dlib::rectangle to_dlib_rect(const Box& b) {
@@ -18,15 +23,22 @@ inline dlib::rectangle to_dlib_rect(const Box& b) {
                          std::lround(b.y + b.height) - 1);
 }
 
-// Builds models from a trained predictor (used by the trainer).
+// Builds models from what the trainers return.
 class ShapeModelAccess {
  public:
   static BodyShapeModel make(dlib::shape_predictor predictor) {
     BodyShapeModel model;
+    model.impl_->landmarks = static_cast<int>(predictor.num_parts());
     model.impl_->predictor = std::move(predictor);
     return model;
   }
-  static const dlib::shape_predictor& predictor(const BodyShapeModel& model) { return model.impl_->predictor; }
+  static BodyShapeModel make(BodyMaskNet net, int landmarks) {
+    BodyShapeModel model;
+    model.impl_->net = std::make_unique<BodyMaskNet>(std::move(net));
+    model.impl_->landmarks = landmarks;
+    return model;
+  }
+  static const BodyShapeModel::Impl& impl(const BodyShapeModel& model) { return *model.impl_; }
 };
 
 }  // namespace bodyrec

@@ -11,24 +11,12 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/imglab_xml.h"
+#include "bodyrec/landmarks/landmark_dataset.h"
 
 namespace fs = std::filesystem;
 
 namespace bodyrec {
 namespace {
-
-std::string part_name(size_t index) {
-  char name[32];
-  std::snprintf(name, sizeof(name), "%02zu", index);  // "00".."179", as in the thesis author's files
-  return name;
-}
-
-ImglabBox landmark_box(const Box& box, const std::vector<cv::Point2d>& points) {
-  ImglabBox b;
-  b.box = box;
-  for (size_t i = 0; i < points.size(); ++i) b.parts.push_back({part_name(i), points[i]});
-  return b;
-}
 
 void write_image(const cv::Mat& image, const fs::path& path) {
   if (!cv::imwrite(path.string(), image)) throw ProcessingError("cannot write " + path.string());
@@ -143,8 +131,9 @@ ContourSetReport build_pennfudan_contour_set(const ContourSetOptions& options) {
         mirrored.boxes.push_back(ignored);
         continue;
       }
-      entry.boxes.push_back(landmark_box(box, contour.points));
-      mirrored.boxes.push_back(landmark_box(mirror_box(box, image.cols), mirror_contour(contour.points, image.cols)));
+      entry.boxes.push_back(imglab_landmark_box(box, contour.points));
+      mirrored.boxes.push_back(
+          imglab_landmark_box(mirror_box(box, image.cols), mirror_contour(contour.points, image.cols)));
       ++(is_test ? report.test_people : report.train_people);
     }
     write_image(image, out / entry.file);

@@ -1,5 +1,8 @@
 #include "bodyrec/landmarks/landmark_dataset.h"
 
+#include <cstdio>
+#include <filesystem>
+
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
@@ -40,6 +43,33 @@ LandmarkDataset load_landmark_dataset(const std::string& xml_path, bool load_ima
     dataset.images.push_back(std::move(out));
   }
   return dataset;
+}
+
+ImglabBox imglab_landmark_box(const Box& box, const std::vector<cv::Point2d>& points) {
+  ImglabBox b;
+  b.box = box;
+  for (size_t i = 0; i < points.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "%02zu", i);
+    b.parts.push_back({name, points[i]});
+  }
+  return b;
+}
+
+void write_landmark_dataset(const LandmarkDataset& data, const std::string& xml_path, const std::string& name) {
+  ImglabDataset out;
+  out.name = name;
+  for (const auto& image : data.images) {
+    ImglabImage entry;
+    entry.file = std::filesystem::absolute(image.path).string();
+    for (const auto& person : image.people) {
+      ImglabBox box = imglab_landmark_box(person.box, person.landmarks);
+      box.ignore = person.ignore;
+      entry.boxes.push_back(std::move(box));
+    }
+    out.images.push_back(std::move(entry));
+  }
+  write_imglab(out, xml_path);
 }
 
 }  // namespace bodyrec

@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "bodyrec/core/geometry.h"
+#include "bodyrec/io/imglab_xml.h"
 
 namespace bodyrec {
 
@@ -32,5 +33,12 @@ struct LandmarkDataset {
 // folder). Throws InputError naming the XML, image and box for: unreadable XML, a missing or undecodable
 // image, part names that are not 0..n-1, or boxes with different numbers of parts.
 LandmarkDataset load_landmark_dataset(const std::string& xml_path, bool load_images = true);
+
+// An imglab box with landmark parts named "00", "01", ... (the thesis author's naming).
+ImglabBox imglab_landmark_box(const Box& box, const std::vector<cv::Point2d>& points);
+
+// Writes `data` as imglab XML to `xml_path`, image paths made absolute (e.g. the validation part of a
+// training set, to score it again with other options). Throws ProcessingError when it cannot be written.
+void write_landmark_dataset(const LandmarkDataset& data, const std::string& xml_path, const std::string& name);
 
 }  // namespace bodyrec

@@ -69,11 +69,11 @@ LandmarkScores evaluate_body_shape(const BodyShapeModel& model, const LandmarkDa
   double fit_ms = 0;
   for (size_t i = 0; i < data.images.size(); ++i) {
     const auto& image = data.images[i];
-    const cv::Mat gray = BodyShapeModel::prepare(image.image);
+    const cv::Mat prepared = model.prepare(image.image);
     for (const auto& person : image.people) {
       if (person.ignore || person.landmarks.empty()) continue;
       const auto t0 = std::chrono::steady_clock::now();
-      const auto predicted = model.fit(gray, person.box);
+      const auto predicted = model.fit(prepared, person.box);
       fit_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       errors.push_back(person_landmark_error(predicted, person.landmarks, person.box, image.image.cols));
       errors.back().image = static_cast<int>(i);

@@ -5,13 +5,28 @@
 #include <dlib/image_processing/shape_predictor_trainer.h>
 #include <dlib/image_transforms/assign_image.h>
 #include <dlib/opencv/cv_image.h>
+#include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/landmarks/body_shape_impl.h"
 
 namespace bodyrec {
+namespace {
+
+cv::Mat gray_of(const cv::Mat& image) {
+  if (image.type() == CV_8UC1) return image;
+  cv::Mat gray;
+  cv::cvtColor(image, gray, image.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+BodyShapeModel train_trees(const LandmarkDataset& data, const ShapeTrainOptions& options);
+
+}  // namespace
 
 void ShapeTrainOptions::check() const {
+  if (method != "mask-net" && method != "trees") throw UsageError("--method must be mask-net or trees");
+  if (method == "mask-net") net.check();
   if (oversampling < 1) throw UsageError("--oversampling must be >= 1");
   if (!(nu > 0 && nu <= 1)) throw UsageError("--nu must be in (0, 1]");
   if (tree_depth < 1 || tree_depth > 10) throw UsageError("--tree-depth must be in [1, 10]");
@@ -26,6 +41,15 @@ void ShapeTrainOptions::check() const {
 
 BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOptions& options) {
   options.check();
+  if (options.method == "trees") return train_trees(data, options);
+  MaskNetTrainOptions net = options.net;
+  net.verbose = net.verbose || options.verbose;
+  return ShapeModelAccess::make(train_body_mask_net(data, net), data.landmarks);
+}
+
+namespace {
+
+BodyShapeModel train_trees(const LandmarkDataset& data, const ShapeTrainOptions& options) {
   dlib::array<dlib::array2d<unsigned char>> images;
   std::vector<std::vector<dlib::full_object_detection>> shapes;
   for (const auto& image : data.images) {
@@ -38,7 +62,7 @@ BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOpt
     }
     if (people.empty()) continue;
     images.resize(images.size() + 1);
-    dlib::assign_image(images[images.size() - 1], dlib::cv_image<unsigned char>(BodyShapeModel::prepare(image.image)));
+    dlib::assign_image(images[images.size() - 1], dlib::cv_image<unsigned char>(gray_of(image.image)));
     shapes.push_back(std::move(people));
   }
   if (shapes.empty()) throw ProcessingError("no person with landmarks to train the shape model on");
@@ -63,10 +87,18 @@ BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOpt
   }
 }
 
+}  // namespace
+
 void save_body_shape(const BodyShapeModel& model, const std::string& path) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw ProcessingError("cannot write " + path);
-  dlib::serialize(ShapeModelAccess::predictor(model), out);
+  const auto& impl = ShapeModelAccess::impl(model);
+  if (impl.net) {
+    impl.net->save(out);
+    dlib::serialize(impl.landmarks, out);
+  } else {
+    dlib::serialize(impl.predictor, out);
+  }
   out.flush();
   if (!out) throw ProcessingError("cannot write " + path);
 }

@@ -34,6 +34,7 @@ LandmarkDataset synthetic_people(int count, uint64_t first_seed, int landmarks) 
 
 ShapeTrainOptions small_options() {
   ShapeTrainOptions o;
+  o.method = "trees";
   o.oversampling = 20;
   o.cascade_depth = 8;
   o.trees_per_level = 150;
@@ -82,7 +83,7 @@ TEST(ShapeTraining, SavedModelLoadsAndPredictsTheSame) {
   testing::TempDir dir;
   save_body_shape(model, (dir / "shape.dat").string());
   const BodyShapeModel loaded((dir / "shape.dat").string());
-  const cv::Mat gray = BodyShapeModel::prepare(train.images[0].image);
+  const cv::Mat gray = model.prepare(train.images[0].image);
   EXPECT_EQ(loaded.fit(gray, train.images[0].people[0].box), model.fit(gray, train.images[0].people[0].box));
   EXPECT_THROW(save_body_shape(model, (dir / "missing" / "shape.dat").string()), ProcessingError);
 }
@@ -98,6 +99,9 @@ TEST(ShapeTraining, BadModelFilesAndOptions) {
   o.nu = 0;
   EXPECT_THROW(o.check(), UsageError);
   EXPECT_THROW(train_body_shape(LandmarkDataset{}, ShapeTrainOptions{}), ProcessingError);
+  o = ShapeTrainOptions();
+  o.method = "forest";
+  EXPECT_THROW(o.check(), UsageError);
 }
 
 }  // namespace

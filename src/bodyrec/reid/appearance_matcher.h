@@ -42,15 +42,17 @@ class AppearanceMatcher {
 };
 
 // The matchers by name:
-//  "default" / "lomo-xqda": LOMO features twice (colours as seen, and after Retinex); with a model
+//  "default" / "lomo-xqda": LOMO features twice (colours as seen, and after Retinex), each averaged
+//      with the mirror image's (LomoOptions::mirror; descriptor version "lomo3"); with a model
 //      (model_path, or train()) one XQDA metric per half, fused (xqda.h XqdaEnsemble),
-//      similarity = -squared distance of the embeddings, threshold from the training pairs; without a
-//      model it is the unlearned fallback "lomo".
+//      similarity = -squared distance of the embeddings, threshold calibrated on held-out training
+//      people (train_xqda_ensemble); without a model it is the unlearned fallback "lomo".
 //  "lomo": the same features, similarity = -squared Euclidean distance, threshold measured on VIPeR.
 //  "stripes": compact colour histograms in horizontal stripes (stripe_features.h), no model; the online
 //      default of `bodyrec reid` (4 KB per scan), threshold set on synthetic recordings.
 //  "kaze": the thesis's KAZE score (kaze_matcher.h), threshold 10.
-// Throws UsageError for an unknown name, InputError for an unreadable model.
+// Throws UsageError for an unknown name, InputError for an unreadable model or one trained on other
+// features (an XQDA model records them, e.g. "lomo3").
 std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");
 
 // The names make_matcher accepts, for --help and errors.

@@ -1,5 +1,6 @@
 #include "bodyrec/reid/lomo_features.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -72,6 +73,44 @@ TEST(Lomo, MaskRemovesTheBackground) {
   // A fully masked image has no body pixels: all zeros.
   const auto none = lomo_features({a, cv::Mat::zeros(a.size(), CV_8U)});
   EXPECT_EQ(std::accumulate(none.begin(), none.end(), 0.0), 0.0);
+}
+
+double max_difference(const std::vector<float>& a, const std::vector<float>& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.size(); ++i) worst = std::max(worst, double(std::abs(a[i] - b[i])));
+  return worst;
+}
+
+// The mirror option equals the mean of the image's feature and its flipped image's feature (computed the
+// long way), each part scaled back to unit norm, and makes the feature left-right invariant.
+TEST(Lomo, MirrorOptionAveragesWithTheMirrorImage) {
+  cv::Mat image = person({0, 0, 200}, {200, 0, 0}, {90, 90, 90});
+  cv::rectangle(image, cv::Rect(12, 20, 8, 30), cv::Scalar(0, 220, 0), cv::FILLED);  // a bag on one side
+  cv::Mat flipped, mask = cv::Mat::zeros(image.size(), CV_8U);
+  cv::rectangle(mask, cv::Rect(10, 8, 28, 114), 255, cv::FILLED);
+  cv::flip(image, flipped, 1);
+  for (bool retinex : {false, true}) {
+    LomoOptions one, both;
+    one.retinex = both.retinex = retinex;
+    both.mirror = true;
+    for (const cv::Mat& m : {cv::Mat(), mask}) {
+      cv::Mat flipped_mask;
+      if (!m.empty()) cv::flip(m, flipped_mask, 1);
+      const auto a = lomo_features({image, m}, one), b = lomo_features({flipped, flipped_mask}, one);
+      std::vector<float> mean(a.size());
+      for (size_t i = 0; i < a.size(); ++i) mean[i] = 0.5f * (a[i] + b[i]);
+      const size_t colour = 40 * 512;
+      const double colour_norm = norm_of(mean, 0, colour), texture_norm = norm_of(mean, colour, mean.size());
+      for (size_t i = 0; i < mean.size(); ++i) mean[i] /= static_cast<float>(i < colour ? colour_norm : texture_norm);
+      const auto mirrored = lomo_features({image, m}, both);
+      ASSERT_EQ(mirrored.size(), a.size());
+      EXPECT_LT(max_difference(mirrored, mean), 1e-6) << "retinex " << retinex;
+      EXPECT_LT(max_difference(mirrored, lomo_features({flipped, flipped_mask}, both)), 1e-6);
+      EXPECT_GT(max_difference(a, b), 0.02);  // the bag makes the image and its mirror differ (0.04)
+      EXPECT_NEAR(norm_of(mirrored, 0, colour), 1.0, 1e-5);
+      EXPECT_NEAR(norm_of(mirrored, colour, mirrored.size()), 1.0, 1e-5);
+    }
+  }
 }
 
 TEST(Lomo, AnyCropSizeIsResampledAndOptionsAreChecked) {

@@ -9,8 +9,10 @@
 namespace bodyrec {
 namespace {
 
-// Measured rank-1 on split 0 of seed 0 minus a small margin (docs/benchmarks.md has the 10-split figures).
-constexpr double kDefaultRank1Floor = 0.34;
+// Measured rank-1 on split 0 of seed 0 minus a small margin (docs/benchmarks.md has the 10-split figures):
+// default 37.34 % (35.76 % before the features were mirror-averaged, which this floor rejects), unlearned
+// fallback 13.61 %.
+constexpr double kDefaultRank1Floor = 0.36;
 constexpr double kLomoRank1Floor = 0.11;
 
 ReidDataset viper(const std::filesystem::path& root) {
@@ -30,9 +32,9 @@ TEST(ViperData, DefaultMatcherReachesItsRank1) {
   EXPECT_EQ(r.gallery, 316);
   EXPECT_GE(r.rank1, kDefaultRank1Floor) << r.matcher;
   EXPECT_GE(r.rank20, 0.85);
-  // The learned same-person threshold holds for the test's new people (split 0: 90.2 % of same-person
-  // pairs accepted, 92.9 % of different-person pairs rejected; the calibration on training pairs it
-  // replaced accepted 8.2 %).
+  // The learned same-person threshold holds for the test's new people (split 0: 90.8 % of same-person
+  // pairs accepted, 92.5 % of different-person pairs rejected; 90.2 / 92.9 % before the mirror-averaged
+  // features; the calibration on training pairs it replaced accepted 8.2 %).
   EXPECT_GE(r.same_accepted, 0.75);
   EXPECT_GE(r.different_rejected, 0.75);
 }

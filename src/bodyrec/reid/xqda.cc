@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <map>
+#include <string>
 #include <utility>
 
 #include <opencv2/core.hpp>
@@ -15,7 +16,7 @@ namespace bodyrec {
 namespace {
 
 constexpr const char* kFormat = "bodyrec-xqda";
-constexpr int kFormatVersion = 1;
+constexpr int kFormatVersion = 2;  // 2: `features` names what the model was trained on
 
 std::string fingerprint(const cv::Mat& m) {
   uint64_t h = 1469598103934665603ull;  // FNV-1a over the bytes
@@ -224,13 +225,15 @@ std::vector<float> XqdaEnsemble::embed(const std::vector<float>& feature) const 
 }
 
 void XqdaEnsemble::save(const std::string& path) const {
+  if (features.empty()) throw ProcessingError(path + ": the model does not say which features it was trained on");
   cv::FileStorage fs;
   try {
     fs.open(path, cv::FileStorage::WRITE);
   } catch (const cv::Exception&) {
   }
   if (!fs.isOpened()) throw ProcessingError(path + ": cannot write the model");
-  fs << "format" << kFormat << "format_version" << kFormatVersion << "id" << id << "threshold" << threshold;
+  fs << "format" << kFormat << "format_version" << kFormatVersion << "id" << id << "features" << features
+     << "threshold" << threshold;
   fs << "parts" << "[";
   for (const auto& p : parts) fs << "{" << "threshold" << p.threshold << "projection" << p.projection << "}";
   fs << "]";
@@ -245,11 +248,15 @@ XqdaEnsemble XqdaEnsemble::load(const std::string& path) {
   if (!fs.isOpened()) throw InputError(path + ": cannot read the re-identification model");
   if (static_cast<std::string>(fs["format"]) != kFormat)
     throw InputError(path + ": field 'format' is not " + std::string(kFormat));
-  if (static_cast<int>(fs["format_version"]) != kFormatVersion)
-    throw InputError(path + ": unsupported 'format_version'");
+  const int version = static_cast<int>(fs["format_version"]);
+  if (version != kFormatVersion)
+    throw InputError(path + ": unsupported 'format_version' " + std::to_string(version) + " (this build reads " +
+                     std::to_string(kFormatVersion) + "; train the model again with bodyrec train-reid)");
   XqdaEnsemble e;
   fs["threshold"] >> e.threshold;
   fs["id"] >> e.id;
+  fs["features"] >> e.features;
+  if (e.features.empty()) throw InputError(path + ": field 'features' is missing");
   const cv::FileNode parts = fs["parts"];
   if (!parts.isSeq() || parts.size() == 0) throw InputError(path + ": field 'parts' is missing or empty");
   for (const auto& node : parts) {

@@ -44,13 +44,16 @@ struct XqdaEnsemble {
   std::vector<XqdaModel> parts;
   double threshold = 0;  // fused squared distance below which two images are called the same person
   std::string id;        // short fingerprint (part of the descriptor version)
+  std::string features;  // what the input features are (set by the matcher that trains it, e.g. "lomo3")
 
   bool empty() const { return parts.empty(); }
   int input_length() const;
   int embed_length() const;
   // REQUIRES feature.size() == input_length().
   std::vector<float> embed(const std::vector<float>& feature) const;
-  // Writes / reads cv::FileStorage YAML; load throws InputError naming the file and field at fault.
+  // Writes / reads cv::FileStorage YAML (format_version 2; version 1 files, which had no `features`, are
+  // refused). save REQUIRES features set (else ProcessingError); load throws InputError naming the file
+  // and the field at fault.
   void save(const std::string& path) const;
   static XqdaEnsemble load(const std::string& path);
 };

@@ -119,15 +119,18 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   const Synthetic s = make_data(20, 3);
   std::vector<XqdaSample> samples;
   for (size_t i = 0; i < s.features.size(); ++i) samples.push_back({&s.features[i], s.ids[i], s.cams[i]});
-  const XqdaEnsemble model = train_xqda_ensemble(samples, 2);  // two 25-float slices
+  XqdaEnsemble model = train_xqda_ensemble(samples, 2);  // two 25-float slices
   ASSERT_EQ(model.parts.size(), 2u);
   EXPECT_EQ(model.input_length(), 50);
   testing::TempDir dir;
   const std::string path = (dir / "model.yml").string();
+  EXPECT_THROW(model.save(path), ProcessingError);  // the matcher must say what the features are
+  model.features = "synthetic1";
   model.save(path);
   const XqdaEnsemble back = XqdaEnsemble::load(path);
   EXPECT_EQ(back.id, model.id);
   EXPECT_EQ(back.id.size(), 8u);
+  EXPECT_EQ(back.features, "synthetic1");
   EXPECT_DOUBLE_EQ(back.threshold, model.threshold);
   EXPECT_EQ(back.embed(s.features[0]), model.embed(s.features[0]));
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "none.yml").string()); }),
@@ -135,6 +138,11 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   testing::write_text(dir / "other.yml", "%YAML:1.0\n---\nformat: something-else\n");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "other.yml").string()); }),
                                 "format"));
+  // A model of the previous format (no `features`, so it may come from other features) is refused.
+  testing::write_text(dir / "v1.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 1\nid: abc\n");
+  const std::string v1 = testing::input_error([&] { XqdaEnsemble::load((dir / "v1.yml").string()); });
+  EXPECT_TRUE(testing::contains(v1, "format_version' 1")) << v1;
+  EXPECT_TRUE(testing::contains(v1, "train-reid")) << v1;
   testing::write_text(dir / "garbage.yml", "\x01\x02 not yaml {{{");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "garbage.yml").string()); }),
                                 "garbage.yml"));

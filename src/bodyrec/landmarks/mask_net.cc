@@ -1,0 +1,397 @@
+#include "bodyrec/landmarks/mask_net.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <istream>
+#include <ostream>
+#include <random>
+
+#include <dlib/dnn.h>
+#include <dlib/opencv/cv_image.h>
+#include <opencv2/dnn.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/landmarks/contour.h"
+
+namespace bodyrec {
+namespace {
+
+// The network: a three-level U-Net, 8 channels at full resolution (doubling twice), two 3x3 convolutions
+// per level, skip connections by concatenation, one logit per pixel. About 53 000 weights; ~18 M
+// multiply-adds for a 32x96 crop.
+constexpr int kChannels = 8;
+template <int N, template <typename> class BN, typename S>
+using block = dlib::relu<BN<dlib::con<N, 3, 3, 1, 1, dlib::relu<BN<dlib::con<N, 3, 3, 1, 1, S>>>>>>;
+template <template <typename> class TAGGED, template <typename> class PREV, typename S>
+using join = dlib::add_layer<dlib::concat_<TAGGED, PREV>, PREV<dlib::resize_prev_to_tagged<TAGGED, S>>>;
+template <typename S> using skip1 = dlib::add_tag_layer<2101, S>;
+template <typename S> using skip2 = dlib::add_tag_layer<2102, S>;
+template <typename S> using skip3 = dlib::add_tag_layer<2103, S>;
+template <typename S> using up1 = dlib::add_tag_layer<2111, S>;
+template <typename S> using up2 = dlib::add_tag_layer<2112, S>;
+template <typename S> using up3 = dlib::add_tag_layer<2113, S>;
+template <template <typename> class BN>
+using unet = dlib::con<1, 1, 1, 1, 1,
+    block<kChannels, BN, join<skip1, up1, dlib::upsample<2,
+    block<kChannels, BN, join<skip2, up2, dlib::upsample<2,
+    block<2 * kChannels, BN, join<skip3, up3, dlib::upsample<2,
+    block<4 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
+    skip3<block<4 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
+    skip2<block<2 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
+    skip1<block<kChannels, BN, dlib::input_rgb_image>>>>>>>>>>>>>>>>>>>>;
+using TrainNet = dlib::loss_binary_log_per_pixel<unet<dlib::bn_con>>;
+using RunNet = dlib::loss_binary_log_per_pixel<unet<dlib::affine>>;
+
+// Raw bytes at the start of every model file (before dlib's serialisation), and the format version.
+constexpr char kMagic[] = "BODYREC-MASKNET\n";
+constexpr size_t kMagicBytes = sizeof(kMagic) - 1;
+constexpr int kVersion = 1;
+
+dlib::matrix<dlib::rgb_pixel> to_dlib(const cv::Mat& bgr) {
+  dlib::matrix<dlib::rgb_pixel> m;
+  dlib::assign_image(m, dlib::cv_image<dlib::bgr_pixel>(bgr));
+  return m;
+}
+
+// dlib trains the network; OpenCV's DNN module runs it (about 2.5x faster on the CPU for these small
+// layers). The same network is rebuilt there: each batch normalisation (an affine_ after training) folded
+// into the convolution before it, dlib's bilinear upsampling = OpenCV's with align_corners, concatenation
+// in tag order (skip connection first). MaskNetTest.OpenCvRunsTheDlibNetwork checks the outputs agree.
+struct ConvWeights {
+  int filters = 0, inputs = 0, size = 0;
+  std::vector<float> weights, biases;
+};
+
+struct CollectWeights {  // visits computational layers from the output back to the input
+  std::vector<ConvWeights>* convs;
+  std::vector<std::vector<float>>* scales;  // gamma then beta of each affine_
+  template <long F, long R, long C, int SY, int SX, int PY, int PX>
+  void operator()(const dlib::con_<F, R, C, SY, SX, PY, PX>& layer) const {
+    static_assert(R == C && SY == 1 && SX == 1, "square filters, stride 1");
+    const dlib::tensor& p = layer.get_layer_params();
+    ConvWeights c;
+    c.filters = static_cast<int>(F);
+    c.size = static_cast<int>(R);
+    c.inputs = static_cast<int>((p.size() - F) / (F * R * C));
+    const float* d = p.host();
+    const size_t n = static_cast<size_t>(F * c.inputs * R * C);
+    c.weights.assign(d, d + n);
+    c.biases.assign(d + n, d + p.size());
+    convs->push_back(std::move(c));
+  }
+  void operator()(const dlib::affine_& layer) const {
+    const dlib::matrix<float> gamma = dlib::mat(layer.get_gamma()), beta = dlib::mat(layer.get_beta());
+    std::vector<float> v(gamma.begin(), gamma.end());
+    v.insert(v.end(), beta.begin(), beta.end());
+    scales->push_back(std::move(v));
+  }
+  template <typename T>
+  void operator()(const T&) const {}
+};
+
+class OpenCvUnet {
+ public:
+  explicit OpenCvUnet(RunNet& trained) {
+    CollectWeights collect{&convs_, &scales_};
+    dlib::visit_computational_layers(trained, collect);
+    std::reverse(convs_.begin(), convs_.end());
+    std::reverse(scales_.begin(), scales_.end());
+    CV_Assert(convs_.size() == 15 && scales_.size() == 14);
+    for (size_t i = 0; i < scales_.size(); ++i) {  // fold: gamma * (w x + b) + beta
+      ConvWeights& c = convs_[i];
+      const std::vector<float>& s = scales_[i];
+      const size_t per_filter = c.weights.size() / static_cast<size_t>(c.filters);
+      for (size_t f = 0; f < static_cast<size_t>(c.filters); ++f) {
+        for (size_t k = 0; k < per_filter; ++k) c.weights[f * per_filter + k] *= s[f];
+        c.biases[f] = c.biases[f] * s[f] + s[static_cast<size_t>(c.filters) + f];
+      }
+    }
+    const int s1 = block(0), s2 = block(pool(s1)), s3 = block(pool(s2)), bottom = block(pool(s3));
+    conv(block(join(block(join(block(join(bottom, s3)), s2)), s1)), false);
+    net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
+    net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
+  }
+
+  // `crop` BGR; returns the logits (rows x cols, CV_32F). dlib's input_rgb_image: RGB planes, (v - mean) / 256.
+  cv::Mat forward(const cv::Mat& crop) {
+    static const float mean[3] = {122.782f, 117.001f, 104.298f};
+    const int shape[] = {1, 3, crop.rows, crop.cols};
+    cv::Mat blob(4, shape, CV_32F);
+    for (int ch = 0; ch < 3; ++ch)
+      for (int r = 0; r < crop.rows; ++r) {
+        float* out = blob.ptr<float>(0, ch, r);
+        const cv::Vec3b* in = crop.ptr<cv::Vec3b>(r);
+        for (int c = 0; c < crop.cols; ++c) out[c] = (in[c][2 - ch] - mean[ch]) / 256.f;
+      }
+    net_.setInput(blob);
+    const cv::Mat out = net_.forward();
+    return cv::Mat(crop.rows, crop.cols, CV_32F, const_cast<float*>(out.ptr<float>(0, 0))).clone();
+  }
+
+ private:
+  int add(const std::string& type, cv::dnn::LayerParams params, int input) {
+    params.type = type;
+    params.name = type + std::to_string(layers_++);
+    const int id = net_.addLayer(params.name, type, params);
+    net_.connect(input, 0, id, 0);
+    return id;
+  }
+  int conv(int input, bool relu) {
+    ConvWeights& c = convs_[next_conv_++];
+    cv::dnn::LayerParams p;
+    p.set("kernel_size", c.size);
+    p.set("pad", c.size / 2);
+    p.set("stride", 1);
+    p.set("num_output", c.filters);
+    p.set("bias_term", true);
+    const int shape[] = {c.filters, c.inputs, c.size, c.size};
+    p.blobs = {cv::Mat(4, shape, CV_32F, c.weights.data()).clone(), cv::Mat(1, c.filters, CV_32F, c.biases.data()).clone()};
+    const int id = add("Convolution", p, input);
+    return relu ? add("ReLU", cv::dnn::LayerParams(), id) : id;
+  }
+  int block(int input) { return conv(conv(input, true), true); }
+  int pool(int input) {
+    cv::dnn::LayerParams p;
+    p.set("pool", "max");
+    p.set("kernel_size", 2);
+    p.set("stride", 2);
+    return add("Pooling", p, input);
+  }
+  int join(int below, int skip) {  // upsample `below` x2, then [skip, upsampled] along channels
+    cv::dnn::LayerParams p;
+    p.set("interpolation", "bilinear");
+    p.set("zoom_factor", 2);
+    p.set("align_corners", true);
+    const int up = add("Resize", p, below);
+    cv::dnn::LayerParams c;
+    c.set("axis", 1);
+    const int id = add("Concat", c, skip);
+    net_.connect(up, 0, id, 1);
+    return id;
+  }
+
+  cv::dnn::Net net_;
+  std::vector<ConvWeights> convs_;
+  std::vector<std::vector<float>> scales_;
+  size_t next_conv_ = 0;
+  int layers_ = 0;
+};
+
+struct PixelBox {  // a box rounded to whole pixels, at least 1x1
+  int x, y, width, height;
+  explicit PixelBox(const Box& b)
+      : x(static_cast<int>(std::lround(b.x))), y(static_cast<int>(std::lround(b.y))),
+        width(std::max(1, static_cast<int>(std::lround(b.width)))),
+        height(std::max(1, static_cast<int>(std::lround(b.height)))) {}
+};
+
+}  // namespace
+
+struct BodyMaskNet::Impl {
+  mutable RunNet net;                  // what is saved (dlib's serialisation); its forward pass keeps buffers
+  std::unique_ptr<OpenCvUnet> runner;  // what runs (built from `net`; keeps buffers between calls)
+  cv::Size input;
+  double threshold = 0.5;
+  void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
+};
+
+void MaskNetTrainOptions::check() const {
+  if (input_width < 8 || input_width % 8 != 0 || input_height < 8 || input_height % 8 != 0)
+    throw UsageError("--net-size must be WxH with both multiples of 8 (e.g. 32x96)");
+  if (iterations < 1) throw UsageError("--iterations must be >= 1");
+  if (batch < 1) throw UsageError("--batch must be >= 1");
+  if (!(learning_rate > 0 && learning_rate < 1)) throw UsageError("--learning-rate must be in (0, 1)");
+  if (!std::isfinite(threshold)) throw UsageError("--mask-threshold must be a finite logit");
+  if (!(box_jitter >= 0 && box_jitter <= 0.5)) throw UsageError("--box-jitter must be in [0, 0.5]");
+}
+
+cv::Mat crop_box(const cv::Mat& image, const Box& box, cv::Size size) {
+  CV_Assert(!image.empty());
+  const PixelBox b(box);
+  const cv::Rect inside = cv::Rect(b.x, b.y, b.width, b.height) & cv::Rect(0, 0, image.cols, image.rows);
+  cv::Mat region;
+  if (inside.area() == 0) {  // wholly outside: the nearest border pixels
+    const int cx = std::clamp(b.x + b.width / 2, 0, image.cols - 1), cy = std::clamp(b.y + b.height / 2, 0, image.rows - 1);
+    region = cv::Mat(b.height, b.width, image.type());
+    region.setTo(cv::Scalar::all(0));
+    cv::Mat nearest = image(cv::Rect(cx, cy, 1, 1));
+    cv::resize(nearest, region, region.size(), 0, 0, cv::INTER_NEAREST);
+  } else {
+    cv::copyMakeBorder(image(inside), region, inside.y - b.y, b.y + b.height - inside.y - inside.height,
+                       inside.x - b.x, b.x + b.width - inside.x - inside.width, cv::BORDER_REPLICATE);
+  }
+  cv::Mat out;
+  cv::resize(region, out, size, 0, 0, cv::INTER_AREA);
+  return out;
+}
+
+BodyMaskNet::BodyMaskNet() : impl_(std::make_unique<Impl>()) {}
+BodyMaskNet::~BodyMaskNet() = default;
+BodyMaskNet::BodyMaskNet(BodyMaskNet&&) noexcept = default;
+BodyMaskNet& BodyMaskNet::operator=(BodyMaskNet&&) noexcept = default;
+
+bool BodyMaskNet::recognise(std::istream& in) {
+  const auto start = in.tellg();
+  char head[kMagicBytes] = {};
+  in.read(head, kMagicBytes);
+  const bool yes = in.gcount() == static_cast<std::streamsize>(kMagicBytes) && std::memcmp(head, kMagic, kMagicBytes) == 0;
+  in.clear();
+  in.seekg(start);
+  return yes;
+}
+
+BodyMaskNet::BodyMaskNet(std::istream& in, const std::string& name) : BodyMaskNet() {
+  if (!recognise(in)) throw InputError(name + ": not a bodyrec mask-net model");
+  in.ignore(kMagicBytes);
+  try {
+    int version = 0, width = 0, height = 0;
+    dlib::deserialize(version, in);
+    if (version != kVersion)
+      throw InputError(name + ": mask-net model version " + std::to_string(version) + ", this build reads " +
+                       std::to_string(kVersion));
+    dlib::deserialize(width, in);
+    dlib::deserialize(height, in);
+    dlib::deserialize(impl_->threshold, in);
+    dlib::deserialize(impl_->net, in);
+    if (width < 8 || height < 8 || width % 8 || height % 8 || !std::isfinite(impl_->threshold))
+      throw InputError(name + ": mask-net model has an invalid input size or threshold");
+    impl_->input = cv::Size(width, height);
+    impl_->build_runner();
+  } catch (const dlib::serialization_error& e) {
+    std::string why = e.what();
+    throw InputError(name + ": truncated or corrupt mask-net model (" + why.substr(0, why.find('\n')) + ")");
+  }
+}
+
+void BodyMaskNet::save(std::ostream& out) const {
+  out.write(kMagic, kMagicBytes);
+  dlib::serialize(kVersion, out);
+  dlib::serialize(impl_->input.width, out);
+  dlib::serialize(impl_->input.height, out);
+  dlib::serialize(impl_->threshold, out);
+  dlib::serialize(impl_->net, out);
+}
+
+cv::Size BodyMaskNet::input_size() const { return impl_->input; }
+double BodyMaskNet::threshold() const { return impl_->threshold; }
+void BodyMaskNet::set_threshold(double logit) {
+  CV_Assert(std::isfinite(logit));
+  impl_->threshold = logit;
+}
+
+cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
+  CV_Assert(bgr.type() == CV_8UC3);
+  return impl_->runner->forward(crop_box(bgr, box, impl_->input));
+}
+
+cv::Mat BodyMaskNet::reference_logits(const cv::Mat& bgr, const Box& box) const {
+  CV_Assert(bgr.type() == CV_8UC3);
+  const dlib::matrix<float> out = impl_->net(to_dlib(crop_box(bgr, box, impl_->input)));
+  cv::Mat result(impl_->input, CV_32F);
+  for (int r = 0; r < result.rows; ++r)
+    for (int c = 0; c < result.cols; ++c) result.at<float>(r, c) = out(r, c);
+  return result;
+}
+
+cv::Mat BodyMaskNet::mask(const cv::Mat& bgr, const Box& box) const {
+  const PixelBox b(box);
+  cv::Mat up;
+  cv::resize(logits(bgr, box), up, cv::Size(b.width, b.height), 0, 0, cv::INTER_LINEAR);
+  double highest = 0;
+  cv::minMaxLoc(up, nullptr, &highest);
+  return up > std::min(impl_->threshold, highest - 1.0);
+}
+
+std::vector<cv::Point2d> BodyMaskNet::fit(const cv::Mat& bgr, const Box& box, int landmarks) const {
+  ContourOptions options;
+  options.landmarks = landmarks;
+  options.min_height = 1;             // the box decides who is a person, not the outline's size
+  options.max_border_fraction = 1.0;  // a body fills its box: it always touches the box's sides
+  BodyContour contour = contour_from_mask(mask(bgr, box), options);
+  CV_Assert(contour.status == ContourStatus::kOk);  // mask() is never empty
+  const PixelBox b(box);
+  for (auto& p : contour.points) p += cv::Point2d(b.x, b.y);
+  return contour.points;
+}
+
+BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainOptions& options) {
+  options.check();
+  struct Sample {
+    const cv::Mat* image;
+    const AnnotatedPerson* person;
+  };
+  std::vector<Sample> samples;
+  for (const auto& image : data.images)
+    for (const auto& person : image.people)
+      if (!person.ignore && person.landmarks.size() >= 3 && person.box.area() > 0 && !image.image.empty())
+        samples.push_back({&image.image, &person});
+  if (samples.empty()) throw ProcessingError("no person with landmarks to train the mask network on");
+
+  const cv::Size size(options.input_width, options.input_height);
+  std::mt19937 rng(options.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double j = options.box_jitter;
+
+  TrainNet net;
+  dlib::dnn_trainer<TrainNet, dlib::adam> trainer(net, dlib::adam(0, 0.9, 0.999));
+  trainer.set_mini_batch_size(static_cast<unsigned long>(options.batch));
+  dlib::matrix<double> schedule(1, options.iterations);
+  const int warm_up = std::max(1, options.iterations / 10);
+  for (int t = 0; t < options.iterations; ++t) {
+    const double f = t < warm_up ? (t + 1.0) / warm_up
+                                 : 0.5 * (1 + std::cos(M_PI * (t - warm_up) / std::max(1, options.iterations - warm_up)));
+    schedule(0, t) = options.learning_rate * f + 1e-5;
+  }
+  trainer.set_learning_rate_schedule(schedule);
+
+  std::vector<dlib::matrix<dlib::rgb_pixel>> crops;
+  std::vector<dlib::matrix<float>> labels;
+  for (int t = 0; t < options.iterations; ++t) {
+    crops.clear();
+    labels.clear();
+    for (int k = 0; k < options.batch; ++k) {
+      const Sample& s = samples[rng() % samples.size()];
+      const Box& truth = s.person->box;
+      const Box jittered(truth.x + normal(rng) * j * truth.width, truth.y + normal(rng) * j * 2 / 3 * truth.height,
+                         truth.width * std::exp(normal(rng) * j * 4 / 3), truth.height * std::exp(normal(rng) * j));
+      cv::Mat crop = crop_box(*s.image, jittered, size);
+      // Target: the landmark polygon in crop pixels (pixel centres map to pixel centres), 4 fractional bits.
+      const PixelBox b(jittered);
+      std::vector<cv::Point> polygon;
+      for (const auto& p : s.person->landmarks)
+        polygon.emplace_back(cvRound(16 * ((p.x - b.x + 0.5) * size.width / b.width - 0.5)),
+                             cvRound(16 * ((p.y - b.y + 0.5) * size.height / b.height - 0.5)));
+      cv::Mat target = cv::Mat::zeros(size, CV_8U);
+      cv::fillPoly(target, std::vector<std::vector<cv::Point>>{polygon}, cv::Scalar(255), cv::LINE_8, 4);
+      if (uniform(rng) < 0.5) {
+        cv::flip(crop, crop, 1);
+        cv::flip(target, target, 1);
+      }
+      const double contrast = 0.7 + 0.6 * uniform(rng), brightness = (uniform(rng) - 0.5) * 50;
+      crop.convertTo(crop, -1, contrast, brightness + 127.5 * (1 - contrast));
+      dlib::matrix<float> label(size.height, size.width);
+      for (int r = 0; r < size.height; ++r)
+        for (int c = 0; c < size.width; ++c) label(r, c) = target.at<uchar>(r, c) ? 1.f : -1.f;
+      crops.push_back(to_dlib(crop));
+      labels.push_back(std::move(label));
+    }
+    trainer.train_one_step(crops, labels);
+    if (options.verbose && (t + 1) % std::max(1, options.iterations / 10) == 0)
+      std::fprintf(stderr, "mask net: iteration %d of %d, loss %.4f\n", t + 1, options.iterations,
+                   trainer.get_average_loss());
+  }
+  trainer.get_net();  // waits for the trainer's thread
+  net.clean();
+  BodyMaskNet model;
+  model.impl_->net = net;
+  model.impl_->input = size;
+  model.impl_->threshold = options.threshold;
+  model.impl_->build_runner();
+  return model;
+}
+
+}  // namespace bodyrec

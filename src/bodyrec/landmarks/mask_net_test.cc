@@ -1,0 +1,200 @@
+// The body mask network: crops, a network trained in-test on drawn silhouettes, OpenCV running dlib's
+// network, the model file and its errors.
+#include "bodyrec/landmarks/mask_net.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
+
+#include "bodyrec/landmarks/body_shape.h"
+#include "bodyrec/landmarks/contour.h"
+#include "bodyrec/landmarks/landmark_metrics.h"
+#include "bodyrec/landmarks/shape_training.h"
+#include "synthetic_silhouette.h"
+#include "test_support.h"
+
+namespace bodyrec {
+namespace {
+
+LandmarkDataset drawn_people(int count, uint64_t first_seed, int landmarks) {
+  LandmarkDataset data;
+  data.landmarks = landmarks;
+  ContourOptions o;
+  o.landmarks = landmarks;
+  for (int i = 0; i < count; ++i) {
+    const auto s = testing::make_silhouette(cv::Size(120, 150), 120, first_seed + static_cast<uint64_t>(i));
+    const BodyContour c = contour_from_mask(s.mask, o);
+    EXPECT_EQ(c.status, ContourStatus::kOk);
+    AnnotatedImage image;
+    image.path = "drawn" + std::to_string(i);
+    image.image = s.image;
+    image.people.push_back({Box(c.bounds), c.points, false});
+    data.images.push_back(std::move(image));
+  }
+  return data;
+}
+
+template <typename F>
+std::string usage_error(F f) {
+  try {
+    f();
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected UsageError";
+  return "";
+}
+
+ShapeTrainOptions small_net(int iterations) {
+  ShapeTrainOptions o;
+  o.method = "mask-net";
+  o.net.input_width = 24;
+  o.net.input_height = 64;
+  o.net.iterations = iterations;
+  o.net.batch = 8;
+  o.net.learning_rate = 5e-3;
+  o.net.threshold = 0;
+  return o;
+}
+
+TEST(CropBox, ResamplesTheBoxAndReplicatesTheBorder) {
+  cv::Mat image(10, 20, CV_8UC3);
+  for (int r = 0; r < image.rows; ++r)
+    for (int c = 0; c < image.cols; ++c) image.at<cv::Vec3b>(r, c) = cv::Vec3b(2 * c, 2 * r, 7);
+  // Inside: a 4x6 box halved by area averaging.
+  const cv::Mat half = crop_box(image, Box(2, 2, 4, 6), cv::Size(2, 3));
+  ASSERT_EQ(half.size(), cv::Size(2, 3));
+  EXPECT_EQ(half.at<cv::Vec3b>(0, 0), cv::Vec3b(5, 5, 7));  // mean of columns 2-3 and rows 2-3
+  EXPECT_EQ(half.at<cv::Vec3b>(2, 1), cv::Vec3b(9, 13, 7));  // columns 4-5, rows 6-7
+  // Sticking out on the left and the top: the outside copies the nearest border pixel.
+  const cv::Mat out = crop_box(image, Box(-3, -2, 5, 4), cv::Size(5, 4));
+  EXPECT_EQ(out.at<cv::Vec3b>(0, 0), cv::Vec3b(0, 0, 7));
+  EXPECT_EQ(out.at<cv::Vec3b>(3, 4), cv::Vec3b(2, 2, 7));  // image pixel (1, 1)
+  // Wholly outside: the nearest image pixel everywhere.
+  const cv::Mat far = crop_box(image, Box(40, 30, 4, 4), cv::Size(2, 2));
+  EXPECT_EQ(far.at<cv::Vec3b>(1, 1), cv::Vec3b(38, 18, 7));  // image pixel (19, 9)
+}
+
+TEST(MaskNet, OptionsAreChecked) {
+  MaskNetTrainOptions o;
+  EXPECT_NO_THROW(o.check());
+  o.input_width = 30;
+  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--net-size"));
+  o = MaskNetTrainOptions();
+  o.iterations = 0;
+  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--iterations"));
+  o = MaskNetTrainOptions();
+  o.box_jitter = 0.9;
+  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--box-jitter"));
+  EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
+}
+
+// One network trained once for the tests below (about 10 s on one core).
+class TrainedMaskNet : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    train_ = new LandmarkDataset(drawn_people(24, 100, 60));
+    model_ = new BodyShapeModel(train_body_shape(*train_, small_net(300)));
+  }
+  static void TearDownTestSuite() {
+    delete model_;
+    delete train_;
+  }
+  static LandmarkDataset* train_;
+  static BodyShapeModel* model_;
+};
+LandmarkDataset* TrainedMaskNet::train_ = nullptr;
+BodyShapeModel* TrainedMaskNet::model_ = nullptr;
+
+TEST_F(TrainedMaskNet, RecoversTheOutlinesOfUnseenSilhouettes) {
+  EXPECT_EQ(model_->kind(), BodyShapeModel::Kind::kMaskNet);
+  EXPECT_EQ(model_->landmarks(), 60);
+  const LandmarkDataset test = drawn_people(8, 900, 60);
+  const LandmarkScores fit = evaluate_body_shape(*model_, test, "drawn");
+  EXPECT_EQ(fit.persons, 8);
+  // People are 120 px tall; their outlines are numbered like the truth, so points do not slide.
+  std::cout << "mask net on drawn people: " << fit.mean_px << " px, to contour " << fit.contour_px << " px\n";
+  EXPECT_LT(fit.mean_px, 4.0);
+  EXPECT_LT(fit.contour_px, 2.0);
+  // Point 0 is the top of the head: its row is the box's first row.
+  const auto& person = test.images[0].people[0];
+  const auto points = model_->fit(model_->prepare(test.images[0].image), person.box);
+  ASSERT_EQ(points.size(), 60u);
+  EXPECT_NEAR(points[0].y, person.box.y, 3.0);
+  EXPECT_GT(signed_area2(points), 0);  // clockwise on screen
+}
+
+TEST_F(TrainedMaskNet, OpenCvRunsTheDlibNetwork) {
+  const auto& image = train_->images[0];
+  testing::TempDir dir;
+  save_body_shape(*model_, (dir / "net.dat").string());
+  std::ifstream in(dir / "net.dat", std::ios::binary);
+  const BodyMaskNet net(in, "net.dat");
+  for (const Box& box : {image.people[0].box, Box(-10, 5, 60, 130), Box(30, 20, 25, 40)}) {
+    const cv::Mat fast = net.logits(image.image, box), reference = net.reference_logits(image.image, box);
+    ASSERT_EQ(fast.size(), cv::Size(24, 64));
+    double range = 0;
+    cv::minMaxLoc(cv::abs(reference), nullptr, &range);
+    EXPECT_GT(range, 1.0);  // a trained network, not zeros
+    EXPECT_LT(cv::norm(fast, reference, cv::NORM_INF), 1e-3 * std::max(1.0, range));
+  }
+}
+
+TEST_F(TrainedMaskNet, SavedModelLoadsAndFitsTheSame) {
+  testing::TempDir dir;
+  const std::string path = (dir / "shape.dat").string();
+  save_body_shape(*model_, path);
+  const BodyShapeModel loaded(path);
+  EXPECT_EQ(loaded.kind_name(), "mask-net");
+  EXPECT_EQ(loaded.landmarks(), 60);
+  const auto& image = train_->images[3];
+  EXPECT_EQ(loaded.fit(loaded.prepare(image.image), image.people[0].box),
+            model_->fit(model_->prepare(image.image), image.people[0].box));
+  // Grey frames are converted for the network, not refused.
+  cv::Mat gray;
+  cv::cvtColor(image.image, gray, cv::COLOR_BGR2GRAY);
+  EXPECT_EQ(loaded.prepare(gray).type(), CV_8UC3);
+}
+
+TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
+  testing::TempDir dir;
+  const std::string good = (dir / "good.dat").string();
+  save_body_shape(*model_, good);
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Truncated in the network, and cut just before the landmark count.
+  testing::write_text(dir / "cut.dat", bytes.substr(0, bytes.size() / 2));
+  const std::string cut = testing::input_error([&] { BodyShapeModel m((dir / "cut.dat").string()); });
+  EXPECT_TRUE(testing::contains(cut, "cut.dat")) << cut;
+  EXPECT_TRUE(testing::contains(cut, "truncated or corrupt")) << cut;
+  testing::write_text(dir / "nocount.dat", bytes.substr(0, bytes.size() - 1));
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyShapeModel m((dir / "nocount.dat").string()); }),
+                                "nocount.dat"));
+  // A future format version.
+  std::string future = bytes;
+  future[16 + 1] = 9;  // dlib's int encoding: a size byte, then the value's bytes
+  testing::write_text(dir / "future.dat", future);
+  const std::string version = testing::input_error([&] { BodyShapeModel m((dir / "future.dat").string()); });
+  EXPECT_TRUE(testing::contains(version, "version 9")) << version;
+  // Only the magic bytes.
+  testing::write_text(dir / "magic.dat", bytes.substr(0, 16));
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyShapeModel m((dir / "magic.dat").string()); }),
+                                "magic.dat"));
+}
+
+TEST(MaskNet, RecogniseLeavesTheStreamWhereItWas) {
+  std::istringstream other("not a model at all");
+  EXPECT_FALSE(BodyMaskNet::recognise(other));
+  EXPECT_EQ(other.tellg(), 0);
+  std::istringstream tiny("BODY");
+  EXPECT_FALSE(BodyMaskNet::recognise(tiny));
+  EXPECT_EQ(tiny.tellg(), 0);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyMaskNet n(other, "x.dat"); }), "x.dat"));
+}
+
+}  // namespace
+}  // namespace bodyrec
