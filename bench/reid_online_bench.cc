@@ -5,7 +5,8 @@
 // replays them; each replay gives the bodies new tracking ids, so every replay is a return visit: each
 // body is pending (a scan described and scored every frame) until recognised, then checked every 10th
 // frame. The gallery holds 100 other users with 8 views each (random clothing) plus these 4 people.
-// Per body = orientation (face detector included) + partial scan when wanted + describe + decide.
+// Per body = orientation (face detector included) + partial scan (with heights above the floor, refitted
+// every 10 frames) and stature when wanted + describe + decide.
 #include <memory>
 #include <random>
 #include <string>
@@ -16,9 +17,11 @@
 #include <unistd.h>
 
 #include "bench_support.h"
+#include "bodyrec/reid/body_measures.h"
 #include "bodyrec/reid/online_reid.h"
 #include "bodyrec/reid/orientation_estimator.h"
 #include "bodyrec/reid/partial_scan.h"
+#include "bodyrec/rgbd/ground_plane.h"
 #include "bodyrec/rgbd/synth.h"
 
 namespace {
@@ -67,10 +70,14 @@ std::string make_gallery(int users, const AppearanceMatcher& matcher, const std:
       cv::circle(image, {32, 14}, 11, cv::Scalar(90, 120, 170), cv::FILLED);
       cv::rectangle(image, cv::Rect(12, 26, 40, 58), shirt, cv::FILLED);
       cv::rectangle(image, cv::Rect(16, 84, 32, 74), trousers, cv::FILLED);
-      const std::vector<float> d = matcher.describe(PersonImage{image, {}});
+      std::vector<float> d = matcher.describe(PersonImage{image, {}});
+      // OnlineReid's layout: the descriptor, then the body measurements (a stature of 1.50-1.99 m).
+      d.push_back(1.5f + 0.005f * static_cast<float>(u % 100));
+      d.push_back(30.f);
       GalleryScan scan;
-      scan.features = cv::Mat(1, static_cast<int>(d.size()), CV_32F, const_cast<float*>(d.data())).clone();
+      scan.features = cv::Mat(1, static_cast<int>(d.size()), CV_32F, d.data()).clone();
       scan.descriptor = matcher.name() + "/" + matcher.version();
+      scan.descriptor_version = kReidDescriptorVersion;
       scan.quality = 0.5;
       scan.view = View::F;
       const UserId id = gallery.enrol(scan);
@@ -90,6 +97,7 @@ struct Pipeline {
   std::unique_ptr<Gallery> gallery;
   OrientationEstimator orient{s.synth->meta()};
   PartialScanExtractor scans{s.synth->meta()};
+  GroundPlaneTracker floor{s.synth->meta().depth, s.synth->meta().depth_unit_m};
   std::unique_ptr<OnlineReid> reid;
   int frame = 0;
   size_t bodies = 0;
@@ -103,13 +111,18 @@ struct Pipeline {
     const RgbdFrame& f = s.frames[static_cast<size_t>(frame) % s.frames.size()];
     const uint64_t replay = static_cast<uint64_t>(frame) / s.frames.size();
     std::vector<ReidBody> in;
+    const std::optional<GroundPlane>& ground = floor.update(frame, f.depth);
     for (const Body& b : f.bodies) {
       BodyRef ref = BodyRef::of(b, f.body_index);
       ref.key = b.tracking_id + 100000 * replay;  // a new visit every replay
       ReidBody rb;
       rb.track = ref.key;
       rb.view = orient.estimate(f, ref);
-      if (reid->wants_scan(rb.track, rb.view)) rb.scan = scans.extract(f, ref, rb.view);
+      if (reid->wants_scan(rb.track, rb.view)) {
+        rb.scan = scans.extract(f, ref, rb.view, nullptr, ground ? &*ground : nullptr);
+        if (ground && rb.scan)
+          rb.stature_m = measure_stature(f.depth, s.synth->meta().depth_unit_m, s.synth->meta().depth, f.body_index, b.index, *ground);
+      }
       in.push_back(std::move(rb));
     }
     // Time runs on across replays; a 1 s gap between them makes every visit end (`left`).
@@ -148,7 +161,7 @@ void BM_GallerySearch(benchmark::State& state) {
     for (View v : kAllViews)
       for (const GalleryEntry& e : gallery.scans(v)) {
         const float* p = e.features.ptr<float>();
-        best = std::max(best, matcher->similarity(probe, std::vector<float>(p, p + e.features.total())));
+        best = std::max(best, matcher->similarity(probe, std::vector<float>(p, p + e.features.total() - kBodyFeatures)));
       }
     benchmark::DoNotOptimize(best);
   }

@@ -50,7 +50,17 @@ struct EvalReidStreamCommand {
         last_time = f.frame.time_s;
         ms += f.ms_orient + f.ms_scan + f.ms_reid;
       }
-      if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
+      if (lines) {
+        // The run's line, plus each body's true person (identity; null when it matches nobody).
+        nlohmann::json j = reid_frame_json(f, last_frame + 1, last_time);
+        for (size_t i = 0; i < f.bodies.size(); ++i) {
+          const int t = f.bodies[i].truth;
+          j["bodies"][i]["person"] = f.frame.truth && t >= 0
+                                         ? nlohmann::json(f.frame.truth->people[static_cast<size_t>(t)].identity)
+                                         : nlohmann::json();
+        }
+        lines->write(j);
+      }
       if (f.frame.truth) {
         any_truth = true;
         for (size_t i = 0; i < f.bodies.size(); ++i) {
@@ -95,7 +105,7 @@ void add(CLI::App& app) {
   sub->add_option("--gallery", command->gallery,
                   "Start from (and write to) this gallery instead of a fresh temporary one");
   add_reid_options(*sub, command->options, false);
-  sub->add_option("--jsonl", command->jsonl, "The run's per-frame output, as `bodyrec reid --jsonl` writes it");
+  sub->add_option("--jsonl", command->jsonl, "The run's per-frame output, as `bodyrec reid --jsonl` writes it, each body with its true \"person\" (identity, null when none)");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (accuracy, splits, merges, frames, body_frames, undecided, users, "
                 "identities, ms_per_frame)");

@@ -9,37 +9,106 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/rgbd/ntu_skeleton.h"
 #include "bodyrec/rgbd/segment.h"
+#include "bodyrec/tracking/floor_tracker.h"
 
 namespace bodyrec::cli {
 namespace {
 
-// Keys for depth-only segments: nearest previous centroid within 0.5 m, else a new key.
-class SegmentKeys {
+// The depth segmentation sometimes cuts one person in two (legs and trunk as separate clusters): two
+// "people" standing within `within_m` of each other on the floor (camera X, Z of their centroids) are
+// one body. Merges the smaller into the larger (labels, box, pixels, top, centroid).
+void merge_fragments(Segmentation& seg, double within_m) {
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t a = 0; a < seg.people.size() && !merged; ++a)
+      for (size_t b = a + 1; b < seg.people.size() && !merged; ++b) {
+        SegmentedPerson& pa = seg.people[a];
+        SegmentedPerson& pb = seg.people[b];
+        const double d = std::hypot(pa.centroid[0] - pb.centroid[0], pa.centroid[2] - pb.centroid[2]);
+        if (d >= within_m) continue;
+        SegmentedPerson& keep = pa.pixels >= pb.pixels ? pa : pb;
+        const SegmentedPerson& gone = pa.pixels >= pb.pixels ? pb : pa;
+        seg.labels.setTo(cv::Scalar(keep.label), seg.labels == gone.label);
+        const double n = keep.pixels + gone.pixels;
+        keep.centroid = (keep.centroid * keep.pixels + gone.centroid * gone.pixels) / n;
+        keep.box |= gone.box;
+        keep.pixels += gone.pixels;
+        keep.height_m = std::max(keep.height_m, gone.height_m);
+        seg.people.erase(seg.people.begin() + static_cast<long>(&gone == &pa ? a : b));
+        merged = true;
+      }
+  }
+}
+
+// Where the bodies of a label image (body index or segmentation, labels 0..5) stand: per label, the
+// median camera X and Z of its depth points (medians: edge pixels with the background's depth do not
+// pull), whether it touches the image's first or last column, and its pixel counts.
+struct LabelFloor {
+  cv::Vec2d floor{0, 0};
+  bool at_side = false;
+  int pixels = 0;        // label pixels
+  int with_depth = 0;    // of which with depth (floor is valid when > 0)
+};
+std::array<LabelFloor, kMaxBodies> label_floors(const cv::Mat& labels, const cv::Mat& depth, const RecordingMeta& meta) {
+  std::array<LabelFloor, kMaxBodies> out{};
+  std::array<std::vector<float>, kMaxBodies> xs, zs;
+  const bool has_depth = !depth.empty() && depth.size() == labels.size() && depth.type() == CV_16U;
+  for (int v = 0; v < labels.rows; ++v) {
+    const uint8_t* l = labels.ptr<uint8_t>(v);
+    for (int u = 0; u < labels.cols; ++u) {
+      if (l[u] >= kMaxBodies) continue;
+      LabelFloor& b = out[l[u]];
+      ++b.pixels;
+      b.at_side |= u == 0 || u == labels.cols - 1;
+      const uint16_t d = has_depth ? depth.at<uint16_t>(v, u) : 0;
+      if (!d) continue;
+      const double z = d * meta.depth_unit_m;
+      xs[l[u]].push_back(static_cast<float>((u - meta.depth.cx) / meta.depth.fx * z));
+      zs[l[u]].push_back(static_cast<float>(z));
+    }
+  }
+  const auto median = [](std::vector<float>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+    return static_cast<double>(v[v.size() / 2]);
+  };
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i].with_depth = static_cast<int>(zs[i].size());
+    if (out[i].with_depth) out[i].floor = {median(xs[i]), median(zs[i])};
+  }
+  return out;
+}
+
+// Keys for body-index slots (a sensor that gives the body index but no tracking ids). A slot keeps its
+// key while it shows the same body; it gets a new one when
+//  - it was empty for over a third of a second after its body touched the image's side (it walked out:
+//    the slot may go to whoever comes in next), or for over 3 s;
+//  - its body's floor position jumped farther than a walker could go in the time since it was last
+//    seen (1 m, a body's width and a half, + 2 m/s x gap): the sensor gave the slot to someone else.
+// A body hidden behind someone for a while keeps its key when it shows again near where it vanished.
+class SlotKeys {
  public:
-  uint64_t key(const cv::Vec3d& c, double t) {
-    int best = -1;
-    double best_d = 0.5;
-    for (size_t i = 0; i < tracks_.size(); ++i) {
-      const double d = cv::norm(tracks_[i].c - c);
-      if (t - tracks_[i].t < 1.0 && tracks_[i].t < t && d < best_d) best = static_cast<int>(i), best_d = d;
-    }
-    if (best < 0) {
-      tracks_.push_back({c, t, 2000000 + next_++});
-      return tracks_.back().key;
-    }
-    tracks_[static_cast<size_t>(best)].c = c;
-    tracks_[static_cast<size_t>(best)].t = t;
-    return tracks_[static_cast<size_t>(best)].key;
+  uint64_t key(int slot, double t, const LabelFloor& now) {
+    State& s = slots_[static_cast<size_t>(slot)];
+    const double gap = t - s.t;
+    const bool fresh = !s.appearance || gap > 3.0 || (gap > 1.0 / 3.0 && s.at_side) ||
+                       (now.with_depth && s.pixels && cv::norm(now.floor - s.floor) > 1.0 + 2.0 * gap);
+    if (fresh) s.appearance = ++appearances_;
+    s.t = t;
+    s.at_side = now.at_side;
+    if (now.with_depth) s.floor = now.floor, s.pixels = now.with_depth;
+    return 1000000 + 10 * s.appearance + static_cast<uint64_t>(slot);
   }
 
  private:
-  struct Track {
-    cv::Vec3d c;
-    double t;
-    uint64_t key;
+  struct State {
+    uint64_t appearance = 0;
+    double t = 0;
+    cv::Vec2d floor{0, 0};
+    bool at_side = false;
+    int pixels = 0;
   };
-  std::vector<Track> tracks_;
-  uint64_t next_ = 0;
+  std::array<State, kMaxBodies> slots_{};
+  uint64_t appearances_ = 0;
 };
 
 // The truth person whose body-index pixels overlap this label most (at least half of its pixels); without
@@ -142,8 +211,8 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
   if (from == "depth" ||
       (from == "auto" && reader && meta.streams.depth && !meta.streams.body_index && (!meta.streams.bodies || options.depth_only)))
     segmenter = make_segmenter(*reader, options.seg);
-  std::array<int, kMaxBodies> slot_seen{}, slot_appearance{};  // body-index keys: per slot, last frame + 1, count
-  SegmentKeys keys;
+  SlotKeys slot_keys;
+  FloorTracker floor_tracker;  // depth-only keys
   cv::Mat labels;
   int done = 0;
   for (int i = 0; i < frames; ++i, ++done) {
@@ -174,16 +243,11 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
         out.bodies.push_back(ob);
       }
     } else if (use_index && !f.body_index.empty()) {
-      int counts[256] = {0};
-      for (int v = 0; v < f.body_index.rows; ++v)
-        for (int u = 0; u < f.body_index.cols; ++u) ++counts[f.body_index.at<uint8_t>(v, u)];
+      const std::array<LabelFloor, kMaxBodies> floor = label_floors(f.body_index, f.depth, meta);
       for (int s = 0; s < kMaxBodies; ++s) {
-        if (counts[s] < 200) continue;
-        const size_t k = static_cast<size_t>(s);
-        // A slot empty for more than a third of a second (not a brief occlusion or dropout) holds a new body.
-        if (slot_seen[k] == 0 || i - slot_seen[k] > static_cast<int>(meta.fps / 3)) ++slot_appearance[k];
-        slot_seen[k] = i + 1;
-        refs.push_back({static_cast<uint64_t>(1000000 + 10 * slot_appearance[k] + s), nullptr, f.body_index, s});
+        const LabelFloor& now = floor[static_cast<size_t>(s)];
+        if (now.pixels < 200) continue;
+        refs.push_back({slot_keys.key(s, f.time_s, now), nullptr, f.body_index, s});
         OrientedBody ob;
         ob.key = refs.back().key;
         ob.slot = s;
@@ -193,10 +257,17 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
         out.bodies.push_back(ob);
       }
     } else if (segmenter && !f.depth.empty()) {
-      const Segmentation seg = segmenter->segment(f.depth);
+      Segmentation seg = segmenter->segment(f.depth);
+      merge_fragments(seg, 0.3);
       labels = seg.labels;
-      for (const auto& p : seg.people) {
-        refs.push_back({keys.key(p.centroid, f.time_s), nullptr, seg.labels, p.label});
+      const std::array<LabelFloor, kMaxBodies> floor = label_floors(seg.labels, f.depth, meta);
+      std::vector<cv::Vec2d> where;
+      for (const auto& p : seg.people) where.push_back(floor[static_cast<size_t>(p.label)].floor);
+      const std::vector<int> ids = floor_tracker.update(f.index, where);
+      for (size_t k = 0; k < seg.people.size(); ++k) {
+        if (ids[k] < 0) continue;  // not followed for long enough yet (a flicker of the segmentation)
+        const SegmentedPerson& p = seg.people[k];
+        refs.push_back({static_cast<uint64_t>(2000000 + ids[k]), nullptr, seg.labels, p.label});
         OrientedBody ob;
         ob.key = refs.back().key;
         ob.slot = p.label;

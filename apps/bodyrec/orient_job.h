@@ -1,6 +1,6 @@
 // Shared by `bodyrec orient` and `bodyrec eval orient`: opens a recording or an NTU .skeleton file,
-// finds the bodies of every frame (skeletons; else body-index slots; else depth-only segmentation with a
-// nearest-centroid track key) and orients each with the OrientationEstimator.
+// finds the bodies of every frame (skeletons; else body-index slots; else depth-only segmentation, its
+// people followed on the floor by tracking/floor_tracker.h) and orients each with the OrientationEstimator.
 #pragma once
 
 #include <cstdint>
@@ -32,8 +32,8 @@ struct OrientCliOptions {
 void add_orient_options(CLI::App& sub, OrientCliOptions& options);
 
 struct OrientedBody {
-  uint64_t key = 0;      // tracking id; 1000000 + 10 x appearance + body-index slot (a slot empty for over
-                         // a third of a second holds a new body); or 2000000 + segment track
+  uint64_t key = 0;      // tracking id; 1000000 + 10 x appearance + body-index slot (a new appearance when
+                         // the slot went to another body: orient_job.cc SlotKeys); or 2000000 + floor track id
   int slot = -1;         // label in the frame's labels (body index or segmentation), -1 none
   const Body* body = nullptr;
   ViewEstimate view;

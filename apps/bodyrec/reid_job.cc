@@ -4,7 +4,9 @@
 #include <map>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/reid/body_measures.h"
 #include "bodyrec/reid/partial_scan.h"
+#include "bodyrec/rgbd/ground_plane.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -21,14 +23,17 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   for (const auto& n : matcher_names()) names += (names.empty() ? "" : ", ") + n;
   sub.add_option("--matcher", o.matcher,
                  "Appearance matcher: " + names +
-                     ". stripes (default): colour histograms in stripes, no model needed; default/lomo-xqda with "
+                     ". stripes (default): colour histograms in bands of height above the floor, no model needed; "
+                     "default/lomo-xqda with "
                      "--model (bodyrec train-reid); kaze: the thesis's score")
       ->capture_default_str();
   sub.add_option("--model", o.model, "Learned model for --matcher default/lomo-xqda (bodyrec train-reid --out)");
   sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery");
   sub.add_option("--prune-unseen-for", o.prune_unseen_for,
                  "Before the run, forget users unseen for this long (30d, 12h, 45m...)");
-  sub.add_option("--decide-after", o.reid.decide_after, "Scans a new body collects before it is recognised or enrolled")
+  sub.add_option("--decide-after", o.reid.decide_after,
+                 "Scans a new body collects before it is recognised or enrolled (a sure recognition, both of its "
+                 "first 2 scans clearly for one user of the same stature, comes sooner)")
       ->capture_default_str();
   sub.add_option("--max-wait", o.reid.max_wait_frames, "Frames after which a body is decided with the scans it has")
       ->capture_default_str();
@@ -48,6 +53,11 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
                  "all: compare a scan with every view of a user; near: same and complementary views only (thesis), "
                  "all views when the user has none of those")
       ->check(CLI::IsMember({"all", "near"}))
+      ->capture_default_str();
+  sub.add_option("--stature-weight", o.reid.stature_weight,
+                 "Stature fused with appearance: a user whose stature (top of the depth points above the floor) "
+                 "differs from the body's by more than 4 cm loses this share of |threshold| per further cm; 0 = "
+                 "appearance only")
       ->capture_default_str();
   sub.add_option("--left-after", o.reid.left_after_s, "Seconds unseen after which a body has left")
       ->capture_default_str();
@@ -81,18 +91,23 @@ int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gal
   OnlineReid reid(gallery, *input.matcher, ro);
   const PartialScanExtractor scans(input.meta);
   std::map<uint64_t, cv::Rect> last_box;  // per track: the colour box of its last scan
+  GroundPlaneTracker floor(input.meta.depth, input.meta.depth_unit_m);
   const int frames = run_orientation(input.path, options.orient, [&](const OrientFrame& f) {
     ReidFrame out{f.frame, f.bodies, {}, f.ms, 0, 0};
     std::vector<ReidBody> bodies;
     auto t0 = std::chrono::steady_clock::now();
+    // The floor: heights for the scans' bands and the statures.
+    const std::optional<GroundPlane>& ground = floor.update(f.frame.index, f.frame.depth);
     for (const OrientedBody& b : f.bodies) {
       ReidBody rb;
       rb.track = b.key;
       rb.view = b.view;
       if (reid.wants_scan(b.key, b.view)) {
         const BodyRef ref{b.key, b.body, f.labels, b.slot};
-        rb.scan = scans.extract(f.frame, ref, b.view);
+        rb.scan = scans.extract(f.frame, ref, b.view, nullptr, ground ? &*ground : nullptr);
         if (rb.scan) last_box[b.key] = rb.scan->box;
+        if (ground && rb.scan)
+          rb.stature_m = measure_stature(f.frame.depth, input.meta.depth_unit_m, input.meta.depth, f.labels, b.slot, *ground);
       }
       const auto box = last_box.find(b.key);
       if (box != last_box.end()) rb.box = box->second;

@@ -27,11 +27,36 @@ TEST(EvalReidStreamCli, ReturningPeopleAreRecognisedWithoutSplitsOrMerges) {
   EXPECT_EQ(j["merges"].get<int>(), 0);
   EXPECT_GE(j["accuracy"].get<double>(), 0.95);
   EXPECT_GT(j["body_frames"].get<int>(), 300);
-  // The same with body-index slots only (no skeletons): views from depth.
-  const RunResult b = run_bodyrec({"eval", "reid-stream", reenter().string(), "--bodies-from", "body-index", "--json"});
-  ASSERT_EQ(b.exit_code, 0) << b.err;
-  EXPECT_EQ(last_json_line(b.out)["merges"].get<int>(), 0);
-  EXPECT_GE(last_json_line(b.out)["accuracy"].get<double>(), 0.9);
+  // The same with body-index slots only (no skeletons: views from depth), and with the depth image only
+  // (own segmentation, people followed on the floor).
+  for (const char* source : {"body-index", "depth"}) {
+    const RunResult b = run_bodyrec({"eval", "reid-stream", reenter().string(), "--bodies-from", source, "--json"});
+    ASSERT_EQ(b.exit_code, 0) << source << ": " << b.err;
+    const auto jb = last_json_line(b.out);
+    EXPECT_EQ(jb["merges"].get<int>(), 0) << source;
+    EXPECT_EQ(jb["splits"].get<int>(), 0) << source;
+    EXPECT_EQ(jb["users"].get<int>(), 3) << source;
+    EXPECT_GE(jb["accuracy"].get<double>(), 0.95) << source;
+  }
+}
+
+TEST(EvalReidStreamCli, JsonLinesNameEachBodysTruePerson) {
+  TempDir dir;
+  const std::string lines = (dir / "r.jsonl").string();
+  const RunResult r = run_bodyrec({"eval", "reid-stream", reenter().string(), "--max-frames", "60", "--jsonl", lines});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(lines);
+  int bodies = 0, with_person = 0;
+  for (size_t at = 0, end; (end = text.find('\n', at)) != std::string::npos; at = end + 1) {
+    const auto j = nlohmann::json::parse(text.substr(at, end - at));
+    for (const auto& b : j["bodies"]) {
+      ++bodies;
+      ASSERT_TRUE(b.contains("person"));
+      with_person += b["person"].is_number_integer();
+    }
+  }
+  EXPECT_GT(bodies, 60);
+  EXPECT_EQ(with_person, bodies);  // every sensor body is a true person in this recording
 }
 
 TEST(ReidCli, EnrolsOnceThenRecognisesFromThePersistentGallery) {
@@ -95,6 +120,9 @@ TEST(ReidCli, BadInputsSayWhatIsWrong) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   r = run_bodyrec({"reid", reenter().string(), "--gallery", (dir / "g.db").string(), "--matcher", "eigenfaces"});
   EXPECT_EQ(r.exit_code, 2) << r.err;
+  r = run_bodyrec({"reid", reenter().string(), "--gallery", (dir / "g.db").string(), "--stature-weight", "-1"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "stature")) << r.err;
   r = run_bodyrec({"eval", "reid-stream", reenter().string(), "--bodies-from", "skeleton", "--max-frames", "5",
                    "--matcher", "stripes", "--model", "x.yml"});
   EXPECT_EQ(r.exit_code, 2) << r.err;

@@ -81,21 +81,25 @@ class LomoMatcher : public AppearanceMatcher {
   bool learns_;  // false: the unlearned fallback stays unlearned
 };
 
-// Squared distance (sum of the stripes' squared Hellinger distances, 0..8) below which the stripes
+// Distance (the bands' squared Hellinger distances scaled to 8 bands, 0..8) below which the stripes
 // matcher calls two scans the same person; measured on synthetic recordings (docs/benchmarks.md).
 constexpr double kStripeThreshold = 2.5;
 
 class StripeMatcher : public AppearanceMatcher {
  public:
   std::string name() const override { return "stripes"; }
-  std::string version() const override { return "stripes1"; }
+  // stripes1: 8 stripes by image row; stripes2: 11 bands by height above the floor.
+  std::string version() const override { return "stripes2"; }
   std::string summary() const override {
-    return "HSV histograms in 8 horizontal stripes (Hellinger): similarity = -squared distance, same person above -" +
-           std::to_string(kStripeThreshold).substr(0, 4);
+    return "HSV histograms in 0.2 m bands of height above the floor (Hellinger, over the bands both show): "
+           "similarity = -distance, same person above -" + std::to_string(kStripeThreshold).substr(0, 4);
   }
   std::vector<float> features(const PersonImage& image) const override { return stripe_features(image); }
+  // Scans that share too few bands (one shows only the head, the other only the legs) cannot be the
+  // same person as far as colour can tell: the largest distance.
   double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
-    return -squared_distance(probe, gallery);
+    const StripeOptions o;
+    return -stripe_distance(probe, gallery, o).value_or(o.compared_bands);
   }
   double threshold() const override { return -kStripeThreshold; }
 };

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
 
@@ -14,6 +17,32 @@ std::vector<float> as_vector(const cv::Mat& m) {
   CV_Assert(m.type() == CV_32F && m.isContinuous());
   const float* p = m.ptr<float>();
   return std::vector<float>(p, p + m.total());
+}
+
+// The matcher's descriptor of a stored scan (current layout: without the body measurements).
+std::vector<float> appearance_of(const GalleryEntry& e) {
+  std::vector<float> f = as_vector(e.features);
+  f.resize(f.size() >= kBodyFeatures ? f.size() - kBodyFeatures : 0);
+  return f;
+}
+
+// The stature stored with a scan, if any.
+std::optional<double> stature_of(const GalleryEntry& e) {
+  if (e.features.total() < static_cast<size_t>(kBodyFeatures)) return std::nullopt;
+  const float s = e.features.ptr<float>()[e.features.total() - kBodyFeatures];
+  return std::isfinite(s) ? std::optional<double>(s) : std::nullopt;
+}
+
+// Measurements that say what a body's stature is now (the last half second).
+constexpr int kRecentStatures = 15;
+
+cv::Mat features_mat(const std::vector<float>& descriptor, std::optional<double> stature, int count) {
+  cv::Mat m(1, static_cast<int>(descriptor.size()) + kBodyFeatures, CV_32F);
+  float* p = m.ptr<float>();
+  std::copy(descriptor.begin(), descriptor.end(), p);
+  p[descriptor.size()] = stature ? static_cast<float>(*stature) : std::numeric_limits<float>::quiet_NaN();
+  p[descriptor.size() + 1] = static_cast<float>(count);
+  return m;
 }
 
 EventKind store_kind(ReidEventKind kind) {
@@ -27,6 +56,57 @@ EventKind store_kind(ReidEventKind kind) {
 }
 
 }  // namespace
+
+int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher) {
+  const std::string descriptor = matcher.name() + "/" + matcher.version();
+  const std::string family = matcher.name() + "/";
+  // This matcher's scans made by another version of it (its descriptor, its model, or the layout).
+  const auto stale = [&](const std::string& d, int version) {
+    if (d.compare(0, family.size(), family) != 0) return false;  // another matcher's: ignored
+    if (d == descriptor && version > kReidDescriptorVersion)
+      throw InputError(gallery.path() + ": scans of " + d + " in layout version " + std::to_string(version) +
+                       ", newer than this bodyrec's " + std::to_string(kReidDescriptorVersion) + ": use a newer bodyrec");
+    return d != descriptor || version != kReidDescriptorVersion;
+  };
+  std::vector<UserId> users;
+  for (View v : kAllViews)
+    for (const GalleryEntry& e : gallery.scans(v))
+      if (stale(e.descriptor, e.descriptor_version) && std::find(users.begin(), users.end(), e.user) == users.end())
+        users.push_back(e.user);
+  if (users.empty()) return 0;
+  std::vector<std::pair<UserId, StoredScan>> old;
+  for (UserId u : users)
+    for (StoredScan& s : gallery.user_scans(u))
+      if (stale(s.descriptor, s.descriptor_version)) old.emplace_back(u, std::move(s));
+  for (const auto& [u, s] : old)
+    if (s.image_png.empty())
+      throw InputError(gallery.path() + ": " + std::to_string(old.size()) + " scans (user " + std::to_string(u) +
+                       " among them) hold " + s.descriptor + " features (layout " + std::to_string(s.descriptor_version) +
+                       "); this bodyrec describes with " + descriptor + " (layout " +
+                       std::to_string(kReidDescriptorVersion) +
+                       ") and they have no image to describe again (kept with --no-images): forget those users "
+                       "(bodyrec gallery forget USER) or start a new gallery");
+  gallery.transaction([&] {
+    for (const auto& [u, s] : old) {
+      const cv::Mat image = cv::imdecode(s.image_png, cv::IMREAD_COLOR);
+      cv::Mat mask = s.mask_png.empty() ? cv::Mat() : cv::imdecode(s.mask_png, cv::IMREAD_GRAYSCALE);
+      if (image.empty() || (!mask.empty() && mask.size() != image.size()))
+        throw InputError(gallery.path() + ": user " + std::to_string(u) + " view " + view_name(s.view) +
+                         ": the stored image or mask cannot be decoded");
+      GalleryScan g;
+      g.view = s.view;
+      g.image = image;
+      g.mask = mask;
+      g.features = features_mat(matcher.describe(PersonImage{image, mask}), std::nullopt, 0);
+      g.descriptor = descriptor;
+      g.descriptor_version = kReidDescriptorVersion;
+      g.quality = s.quality;
+      g.time = s.time;
+      gallery.put_scan(u, g);
+    }
+  });
+  return static_cast<int>(old.size());
+}
 
 const char* reid_event_name(ReidEventKind kind) {
   switch (kind) {
@@ -42,6 +122,7 @@ void OnlineReidOptions::check() const {
   if (decide_after < 1) throw UsageError("reid: --decide-after must be at least 1");
   if (max_wait_frames < 1) throw UsageError("reid: --max-wait must be at least 1 frame");
   if (max_scans < decide_after) throw UsageError("reid: max_scans must be at least --decide-after");
+  if (sure_after < 1) throw UsageError("reid: --sure-after must be at least 1");
   if (!(min_quality >= 0 && min_quality <= 1)) throw UsageError("reid: --min-quality must be within 0..1");
   if (!(min_view_confidence >= 0 && min_view_confidence <= 1))
     throw UsageError("reid: --min-view-confidence must be within 0..1");
@@ -53,6 +134,9 @@ void OnlineReidOptions::check() const {
   if (std::isinf(threshold)) throw UsageError("reid: --threshold must be finite");
   if (!(margin >= 0)) throw UsageError("reid: --margin must not be negative");
   if (!(new_gap >= 0)) throw UsageError("reid: --new-gap must not be negative");
+  if (!(stature_tolerance_m >= 0)) throw UsageError("reid: stature tolerance must not be negative");
+  if (!(stature_weight >= 0)) throw UsageError("reid: --stature-weight must not be negative");
+  if (!(stature_cap >= 0)) throw UsageError("reid: stature cap must not be negative");
 }
 
 OnlineReid::OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, OnlineReidOptions options)
@@ -61,6 +145,11 @@ OnlineReid::OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, Onlin
   descriptor_ = matcher_.name() + "/" + matcher_.version();
   debug_ = std::getenv("BODYREC_REID_DEBUG") != nullptr;
   threshold_ = std::isnan(options_.threshold) ? matcher_.threshold() : options_.threshold;
+  redescribe_old_scans(gallery_, matcher_);
+}
+
+bool OnlineReid::comparable(const GalleryEntry& e) const {
+  return e.descriptor == descriptor_ && e.descriptor_version == kReidDescriptorVersion;
 }
 
 bool OnlineReid::usable(const ViewEstimate& view) const {
@@ -75,7 +164,7 @@ bool OnlineReid::usable(const ReidBody& body) const {
 // another matcher, or is clearly worse.
 bool OnlineReid::improves(UserId user, View view, double quality) const {
   const GalleryEntry* stored = gallery_.find(user, view);
-  return !stored || stored->descriptor != descriptor_ || quality > options_.update_gain * stored->quality;
+  return !stored || !comparable(*stored) || quality > options_.update_gain * stored->quality;
 }
 
 std::map<View, const OnlineReid::Probe*> OnlineReid::best_per_view(const std::vector<Probe>& probes,
@@ -94,7 +183,7 @@ std::optional<OnlineReid::Probe> OnlineReid::describe(const ReidBody& body) cons
   p.view = *body.view.view;
   p.quality = body.scan->quality;
   p.scan = *body.scan;
-  p.descriptor = matcher_.describe(PersonImage{body.scan->image, body.scan->mask});
+  p.descriptor = matcher_.describe(PersonImage{body.scan->image, body.scan->mask, body.scan->row_height_m});
   return p;
 }
 
@@ -105,15 +194,21 @@ std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe) const
   std::vector<View> near = complementary_views(probe.view);
   near.push_back(probe.view);
   std::map<UserId, Score> best_near, best_any;
+  std::map<UserId, double> best_side;  // over the probe's own and complementary views only
   for (View v : kAllViews) {
-    const bool is_near = options_.all_views || std::find(near.begin(), near.end(), v) != near.end();
+    const bool same_side = std::find(near.begin(), near.end(), v) != near.end();
+    const bool is_near = options_.all_views || same_side;
     for (const GalleryEntry& e : gallery_.scans(v)) {
-      if (e.descriptor != descriptor_) continue;
-      const double s = matcher_.similarity(probe.descriptor, as_vector(e.features));
+      if (!comparable(e)) continue;
+      const double s = matcher_.similarity(probe.descriptor, appearance_of(e));
       for (auto* m : {is_near ? &best_near : nullptr, &best_any}) {
         if (!m) continue;
         auto it = m->find(e.user);
-        if (it == m->end() || s > it->second.similarity) (*m)[e.user] = Score{e.user, s, v, m == &best_near};
+        if (it == m->end() || s > it->second.similarity) (*m)[e.user] = Score{e.user, s, 0, v, m == &best_near, std::nullopt};
+      }
+      if (same_side) {
+        const auto it = best_side.find(e.user);
+        if (it == best_side.end() || s > it->second) best_side[e.user] = s;
       }
     }
   }
@@ -121,6 +216,8 @@ std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe) const
   for (const auto& [user, score] : best_any) {
     const auto it = best_near.find(user);
     out.push_back(it != best_near.end() ? it->second : score);
+    const auto side = best_side.find(user);
+    if (side != best_side.end()) out.back().same_side = side->second;
   }
   std::sort(out.begin(), out.end(), [](const Score& a, const Score& b) { return a.similarity > b.similarity; });
   return out;
@@ -134,6 +231,39 @@ const std::vector<OnlineReid::Score>& OnlineReid::scores(Probe& probe) {
   return probe.scores;
 }
 
+const std::map<UserId, double>& OnlineReid::user_statures() {
+  if (statures_at_ == gallery_version_) return user_statures_;
+  // Per user, the stature of the scan with the most measurements behind it (the longest look).
+  std::map<UserId, std::pair<double, float>> all;
+  for (View v : kAllViews)
+    for (const GalleryEntry& e : gallery_.scans(v))
+      if (comparable(e))
+        if (const auto s = stature_of(e)) {
+          const float n = e.features.ptr<float>()[e.features.total() - 1];
+          const auto it = all.find(e.user);
+          if (it == all.end() || n > it->second.second) all[e.user] = {*s, n};
+        }
+  user_statures_.clear();
+  for (const auto& [user, value] : all) user_statures_[user] = value.first;
+  statures_at_ = gallery_version_;
+  return user_statures_;
+}
+
+std::vector<OnlineReid::Score> OnlineReid::with_stature(std::vector<Score> scores, std::optional<double> stature) {
+  if (!stature || options_.stature_weight <= 0) return scores;
+  const std::map<UserId, double>& users = user_statures();
+  const double scale = std::abs(threshold_);
+  for (Score& s : scores) {
+    const auto it = users.find(s.user);
+    if (it == users.end()) continue;
+    const double beyond_cm = 100 * std::max(0.0, std::abs(*stature - it->second) - options_.stature_tolerance_m);
+    s.stature = -std::min(options_.stature_cap, options_.stature_weight * beyond_cm) * scale;
+    s.similarity += s.stature;
+  }
+  std::stable_sort(scores.begin(), scores.end(), [](const Score& a, const Score& b) { return a.similarity > b.similarity; });
+  return scores;
+}
+
 // Users held by another track seen in this frame: two bodies in one frame are two people.
 std::vector<UserId> OnlineReid::users_held_except(uint64_t key) const {
   std::vector<UserId> held;
@@ -142,15 +272,14 @@ std::vector<UserId> OnlineReid::users_held_except(uint64_t key) const {
   return held;
 }
 
-GalleryScan OnlineReid::gallery_scan(const Probe& probe) const {
+GalleryScan OnlineReid::gallery_scan(const Probe& probe, const Track& track) const {
   GalleryScan g;
   g.view = probe.view;
   g.image = probe.scan.image;
   g.mask = probe.scan.mask;
-  g.features = cv::Mat(1, static_cast<int>(probe.descriptor.size()), CV_32F,
-                       const_cast<float*>(probe.descriptor.data())).clone();
+  g.features = features_mat(probe.descriptor, track.stature.estimate(), track.stature.count());
   g.descriptor = descriptor_;
-  g.descriptor_version = 1;
+  g.descriptor_version = kReidDescriptorVersion;
   g.quality = probe.quality;
   return g;
 }
@@ -175,9 +304,9 @@ void OnlineReid::enrol(uint64_t key, Track& track, std::vector<ReidEvent>& event
   UserId user = 0;
   ++gallery_version_;
   gallery_.transaction([&] {
-    user = gallery_.enrol(gallery_scan(*first), "", static_cast<int64_t>(key), options_.source);
+    user = gallery_.enrol(gallery_scan(*first, track), "", static_cast<int64_t>(key), options_.source);
     for (const auto& [v, p] : best)
-      if (p != first) gallery_.put_scan(user, gallery_scan(*p));
+      if (p != first) gallery_.put_scan(user, gallery_scan(*p, track));
   });
   events.push_back({ReidEventKind::kEnrolled, user, key, first->view, std::nullopt});
   for (const auto& [v, p] : best)
@@ -190,25 +319,31 @@ void OnlineReid::enrol(uint64_t key, Track& track, std::vector<ReidEvent>& event
 }
 
 void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
-  const std::vector<UserId> held = users_held_except(key);
+  // Users seen in another body while this one was in view (now or earlier) are someone else.
+  std::vector<UserId> held = users_held_except(key);
+  held.insert(held.end(), track.beside.begin(), track.beside.end());
   // Each scan votes: for the best user when it passes the threshold and stands out from the next one by
   // the margin; for "new" when even the best user is below the threshold by new_gap; not at all when
   // two users are too close to call or the best is in between.
   const double margin = options_.margin * std::abs(threshold_);
   const double new_gap = options_.new_gap * std::abs(threshold_);
   std::map<UserId, int> votes;
-  std::map<UserId, double> sums;
+  std::map<UserId, double> sums, weakest;  // per user: sum and least of the voting similarities
+  std::map<UserId, bool> stature_agrees;   // the track's stature was measured and matches the user's
   std::map<UserId, View> views;
   std::vector<int64_t> voted_for(track.probes.size(), -1);
   int for_new = 0;
+  const std::optional<double> stature = track.stature.estimate();
   for (size_t i = 0; i < track.probes.size(); ++i) {
     std::vector<Score> s;
-    for (const Score& x : scores(track.probes[i]))
+    for (const Score& x : with_stature(scores(track.probes[i]), stature))
       if (std::find(held.begin(), held.end(), x.user) == held.end()) s.push_back(x);
     if (debug_) {
-      std::fprintf(stderr, "decide track %llu scan %zu view %s quality %.2f:", static_cast<unsigned long long>(key), i,
-                   view_name(track.probes[i].view), track.probes[i].quality);
-      for (const Score& x : s) std::fprintf(stderr, " u%lld %.3f(%s)", static_cast<long long>(x.user), x.similarity, view_name(x.view));
+      std::fprintf(stderr, "decide track %llu scan %zu view %s quality %.2f stature %.3f:", static_cast<unsigned long long>(key), i,
+                   view_name(track.probes[i].view), track.probes[i].quality, stature ? *stature : 0.0);
+      for (const Score& x : s)
+        std::fprintf(stderr, " u%lld %.3f(%s%s)", static_cast<long long>(x.user), x.similarity, view_name(x.view),
+                     x.stature < 0 ? (" st " + std::to_string(x.stature).substr(0, 5)).c_str() : "");
       std::fprintf(stderr, "\n");
     }
     // "New": nobody passes the threshold in a comparison of the same side of the body (same or
@@ -222,6 +357,8 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     const UserId u = s.front().user;
     ++votes[u];
     sums[u] += s.front().similarity;
+    weakest[u] = votes[u] == 1 ? s.front().similarity : std::min(weakest[u], s.front().similarity);
+    stature_agrees[u] = stature && user_statures().count(u) && s.front().stature == 0;
     views[u] = track.probes[i].view;
     voted_for[i] = u;
   }
@@ -231,7 +368,15 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
   for (const auto& [u, k] : votes)
     if (k > most) winner = u, most = k;
   const bool forced = track.frames >= options_.max_wait_frames;
-  if (2 * most > n || (forced && most > 0 && most >= for_new)) {
+  // Before decide_after scans only a sure recognition decides: every scan for the same user, each
+  // clearly (new_gap above the threshold), and the stature measured and matching.
+  const bool sure = most == n && n >= options_.sure_after && weakest[winner] >= threshold_ + new_gap &&
+                    stature_agrees[winner];
+  if (n < options_.decide_after && !forced && !sure) return;
+  // A body whose stature is not measured yet (head not in view) is not recognised as a user whose
+  // stature is known before max_wait: two people who dress alike differ in stature more often than not.
+  const bool stature_pending = options_.stature_weight > 0 && !stature && user_statures().count(winner) && !forced;
+  if (!stature_pending && (sure || 2 * most > n || (forced && most > 0 && most >= for_new))) {
     track.user = winner;
     track.last_verify = frame_;
     events.push_back({ReidEventKind::kRecognised, winner, key, views[winner], sums[winner] / most});
@@ -245,11 +390,13 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     for (const auto& [v, p] : best_per_view(track.probes, voted)) {
       if (!improves(winner, v, p->quality)) continue;
       ++gallery_version_;
-      if (gallery_.put_scan(winner, gallery_scan(*p)) == PutResult::kInserted) {
+      if (gallery_.put_scan(winner, gallery_scan(*p, track)) == PutResult::kInserted) {
         events.push_back({ReidEventKind::kViewAdded, winner, key, v, std::nullopt});
         log(events.back());
       }
     }
+  } else if (stature_pending && 2 * most > n) {
+    return;  // recognised by appearance; wait for the stature to confirm it
   } else if (2 * for_new > n || (forced && for_new > 0 && for_new >= most) ||
              track.frames >= 3 * options_.max_wait_frames) {
     // (Scans that all fall between "same" and "someone else" wait three times longer before enrolling:
@@ -275,26 +422,37 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   ++described;
   std::optional<Score> mine;
   double best_other = -std::numeric_limits<double>::infinity();
-  for (const Score& s : score_users(*probe)) {
-    if (s.user == user) mine = s;
+  // The track's own user by appearance alone (its stored stature may come from this very track's
+  // earlier, rougher estimate); everyone else with the stature term.
+  for (const Score& s : with_stature(score_users(*probe), track.stature.estimate()))
+    if (s.user == user) mine = s, mine->similarity -= s.stature, mine->stature = 0;
     else best_other = std::max(best_other, s.similarity);
-  }
   const double clear_miss = threshold_ - options_.new_gap * std::abs(threshold_);
   if (verify) {
     track.last_verify = frame_;
     // Only a comparison with the same or a complementary view can say "not this user": the other
     // side of a person may look different.
+    const bool side = mine && mine->same_side;
     if (debug_)
-      std::fprintf(stderr, "verify track %llu user %lld view %s quality %.2f: %s %.3f (%s)\n", static_cast<unsigned long long>(key),
-                   static_cast<long long>(user), view_name(view), probe->quality, mine && mine->near ? "near" : "far",
-                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-");
-    if (mine && mine->near && probe->quality >= options_.verify_quality)
-      track.strikes = mine->similarity < clear_miss ? track.strikes + 1 : 0;
-    if (track.strikes >= options_.strikes) {
+      std::fprintf(stderr, "verify track %llu user %lld view %s quality %.2f: best %.3f (%s), same side %s\n",
+                   static_cast<unsigned long long>(key), static_cast<long long>(user), view_name(view), probe->quality,
+                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-",
+                   side ? std::to_string(*mine->same_side).c_str() : "none");
+    // A body that still has its user's stature is more likely the same person turned or seen poorly
+    // than another one: it takes twice as many failed checks in a row (unknown statures leave it to
+    // the appearance).
+    const auto now = track.stature.estimate(kRecentStatures);
+    const auto them = user_statures().find(user);
+    const bool same_stature = options_.stature_weight > 0 && now && them != user_statures().end() &&
+                              std::abs(*now - them->second) <= options_.stature_tolerance_m;
+    if (side && probe->quality >= options_.verify_quality)
+      track.strikes = *mine->same_side < clear_miss ? track.strikes + 1 : 0;
+    if (track.strikes >= options_.strikes * (same_stature ? 2 : 1)) {
       // Not this user any more: release it and decide the body afresh from this scan on.
       events.push_back({ReidEventKind::kLeft, user, key, std::nullopt, std::nullopt});
       log(events.back());
       track.user.reset();
+      track.beside.clear();  // (the failed user stays a candidate: a check can fail on a turned body)
       track.strikes = 0;
       track.frames = 1;
       track.probes.assign(1, std::move(*probe));
@@ -307,14 +465,18 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   const bool ok = mine->near ? mine->similarity > threshold_ : best_other <= threshold_ && mine->similarity > clear_miss;
   if (!ok) return;
   ++gallery_version_;
-  if (gallery_.put_scan(user, gallery_scan(*probe)) == PutResult::kInserted) {
+  if (gallery_.put_scan(user, gallery_scan(*probe, track)) == PutResult::kInserted) {
     events.push_back({ReidEventKind::kViewAdded, user, key, view, std::nullopt});
     log(events.back());
   }
 }
 
 void OnlineReid::leave(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
-  if (!track.user && !track.probes.empty()) {
+  // A pending track with enough evidence (decide_after scans, or seen for max_wait frames) is decided
+  // as it leaves, so a short visit still enrols; a glimpse (a segment that flickered into view for a
+  // few frames) leaves nothing behind.
+  const bool visit = static_cast<int>(track.probes.size()) >= options_.decide_after || track.frames >= options_.max_wait_frames;
+  if (!track.user && !track.probes.empty() && visit) {
     track.frames = std::max(track.frames, options_.max_wait_frames);
     decide(key, track, events);
   }
@@ -342,10 +504,12 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
     Track& t = tracks_[b.track];
     t.last_seen = time_s;
     ++t.frames;
+    if (b.stature_m) t.stature.add(*b.stature_m);
   }
   for (const ReidBody& b : bodies) {
     Track& t = tracks_[b.track];
     if (!t.user) {
+      for (UserId u : users_held_except(b.track)) t.beside.insert(u);
       if (std::optional<Probe> p = describe(b)) {
         ++out.described;
         t.probes.push_back(std::move(*p));
@@ -355,7 +519,8 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
                                           [](const Probe& a, const Probe& c) { return a.quality < c.quality; }));
       }
       const int n = static_cast<int>(t.probes.size());
-      if (n >= options_.decide_after || (n > 0 && t.frames >= options_.max_wait_frames)) decide(b.track, t, out.events);
+      if (n >= std::min(options_.decide_after, options_.sure_after) || (n > 0 && t.frames >= options_.max_wait_frames))
+        decide(b.track, t, out.events);
     } else {
       update(b.track, t, b, out.events, out.described);
     }

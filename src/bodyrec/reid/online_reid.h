@@ -2,24 +2,32 @@
 // persistent gallery: decides per tracked body whether it is a known user or a new one, keeps each
 // user's best scan per view, and reports what happened as events.
 //
-// Per track (a sensor tracking id, a body-index slot or a segment tracker's key):
+// Per track (a sensor tracking id, a body-index slot or a floor tracker's key):
 //  - pending: every usable scan (a view with enough confidence, quality >= min_quality) is described and
-//    scored against the gallery: per user, the best similarity over the user's scans of the same view and
-//    its complementary views (reid/view.h), or over all the user's views when it has none of those. A scan
-//    votes for its best user when that passes the threshold and beats the next user by a margin, for "new"
-//    when the best user fails the threshold on the same side of the body (same or complementary view) or
-//    is well below it (new_gap) across views, and abstains otherwise. Once `decide_after` scans are in, the track is recognised
-//    as the user with a majority of the votes, or enrolled as a new user (best scan per view) when most
-//    scans say "new"; otherwise it collects more, and after max_wait_frames it is decided by the larger
-//    side (when no scan voted at all, it waits up to three times as long, then enrols). Users held by another track in the same frame are never candidates: two bodies in one frame
-//    are two people (no merges).
+//    scored against the gallery: per user, the best appearance similarity over the user's scans of the
+//    same view and its complementary views (reid/view.h), falling back to all the user's views when it
+//    has none of those (all_views, --match-views all, the default: every view at once), plus a stature
+//    term: a user whose stature differs from the track's (body_measures.h) by more than a tolerance
+//    loses score per centimetre. A scan votes for its best user when that passes the threshold and
+//    beats the next user by a margin, for "new" when the best user fails the threshold on the same side of the body or is well below it
+//    (new_gap) across views, and abstains otherwise. Once `decide_after` scans are in, the track is
+//    recognised as the user with a majority of the votes, or enrolled as a new user (best scan per view)
+//    when most scans say "new"; otherwise it collects more, and after max_wait_frames it is decided by
+//    the larger side (when no scan voted at all, it waits up to three times as long, then enrols). Sooner,
+//    after `sure_after` scans, only a sure recognition: every scan clearly (new_gap above the threshold)
+//    for one user whose stature matches. A body whose stature is not measured yet is not recognised as a
+//    user with a known stature before max_wait. Users held by another track in a frame this one was in
+//    are never candidates: two bodies in one frame are two people (no merges).
 //  - assigned: a scan of a view the user lacks, or clearly better than the stored one, is checked against
 //    the user and stored (`view_added` or a silent replacement): it must match the user when the user has
 //    that view or a complementary one, and match nobody else when the view is new. Every few frames the
-//    body is checked against its user's scans of that view or a complementary one; a track that keeps
-//    failing (it jumped to someone else) is released (`left` for that user) and decided afresh.
-//  - a track unseen for left_after_s has left (`left`); a pending track that leaves with scans is decided
-//    first, so a short visit still enrols.
+//    body is checked against its user's scans of the same side of the body (its view or a complementary
+//    one); a track that keeps failing (it jumped to someone else) is released (`left` for that user) and
+//    decided afresh: after `strikes` failed checks in a row, twice as many while the body's recent
+//    stature still matches the user's.
+//  - a track unseen for left_after_s has left (`left`); a pending track that leaves with decide_after
+//    scans, or after max_wait frames in view, is decided first with what it has (as after max_wait); a
+//    glimpse (fewer scans and frames: a segment that flickered into view) leaves nothing behind.
 // A user who comes back gets a new track and is recognised again from the gallery.
 //
 //   OnlineReid reid(gallery, *matcher);
@@ -27,19 +35,21 @@
 //     std::vector<ReidBody> bodies = ...;  // track, view, scan (optional), box
 //     const ReidStep out = reid.step(time_s, bodies);   // out.identities[i].user, out.events
 //   }
-//   reid.finish(last_time_s);  // `left` for everyone still in view
+//   reid.finish();  // `left` for everyone still in view
 #pragma once
 
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/body_measures.h"
 #include "bodyrec/reid/partial_scan.h"
 #include "bodyrec/store/gallery.h"
 
@@ -47,6 +57,9 @@ namespace bodyrec {
 
 struct OnlineReidOptions {
   int decide_after = 4;         // scans a pending track collects before deciding
+  // ... unless its first sure_after scans all vote clearly (new_gap above the threshold) for the same
+  // user whose stature matches the body's: then it is recognised at once. >= decide_after: never early.
+  int sure_after = 2;
   int max_wait_frames = 30;     // then decide with whatever scans there are (at least one)
   int max_scans = 12;           // a pending track keeps at most this many scans (the best ones)
   double min_quality = 0.35;    // scans below this PartialScan::quality are not used
@@ -70,6 +83,13 @@ struct OnlineReidOptions {
   // Views: "near" compares a scan with the user's scans of the same and complementary views (the
   // thesis), falling back to all views when the user has none of those; "all" with every view.
   bool all_views = true;
+  // Stature (body_measures.h), fused with the appearance score: a user whose stored stature differs
+  // from the track's by more than stature_tolerance_m loses stature_weight x |threshold| per centimetre
+  // beyond it, at most stature_cap x |threshold|. Unknown statures (no measurement yet, or scans
+  // described again from an older gallery) cost nothing. stature_weight 0 = appearance only.
+  double stature_tolerance_m = 0.04;
+  double stature_weight = 0.1;
+  double stature_cap = 1.6;
   std::string source;           // recording or camera name written with the gallery's events
   void check() const;           // UsageError naming the field
 };
@@ -79,6 +99,7 @@ struct ReidBody {
   uint64_t track = 0;             // stable while the body stays in view
   ViewEstimate view;
   std::optional<PartialScan> scan;  // none when the body gave no usable scan this frame
+  std::optional<double> stature_m;  // this frame's stature measurement (body_measures.h), if any
   cv::Rect box;                   // colour pixels, for the output only
 };
 
@@ -106,16 +127,33 @@ struct ReidStep {
   int described = 0;                     // scans described this frame (what costs)
 };
 
+// Layout of the features OnlineReid stores per scan: the matcher's descriptor, then kBodyFeatures
+// floats of body measurements (stature in metres or NaN, and the number of frames it is the median of).
+// Version 1 stored the matcher's descriptor alone.
+constexpr int kReidDescriptorVersion = 2;
+constexpr int kBodyFeatures = 2;
+
+// Brings a gallery's scans made by another version of `matcher` (same name, another version() string,
+// e.g. stripes1 before stripes2 or another learned model, or an older kReidDescriptorVersion layout) up
+// to date: each is described again from its stored image and mask (stature and row heights unknown: the
+// image is taken to span the body) and replaced, in one transaction. Returns how many were. Throws
+// InputError naming the gallery when such a scan has no image (a gallery kept with --no-images): its
+// features cannot be rebuilt, and matching them would be wrong; also for a layout newer than this
+// build's. Scans of other matchers are left alone (ignored).
+int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher);
+
 class OnlineReid {
  public:
-  // `gallery` and `matcher` must outlive this object. Gallery scans of another descriptor (matcher name
-  // and version) are ignored for matching and replaced when this matcher stores that view.
+  // `gallery` and `matcher` must outlive this object. Gallery scans of another matcher (name and
+  // version) are ignored for matching and replaced when this matcher stores that view; this matcher's
+  // scans of an older layout are described again first (redescribe_old_scans, InputError as it says).
   OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, OnlineReidOptions options = {});
 
   // One frame, bodies of that frame; time_s increasing. Writes to the gallery (enrolments, views,
   // events) as decisions are made; each write is its own transaction (an enrolment with all its views one).
   ReidStep step(double time_s, const std::vector<ReidBody>& bodies);
-  // Decides pending tracks that have scans and ends every track (`left`), e.g. at the end of a recording.
+  // Decides pending tracks that have enough scans (as leave does) and ends every track (`left`), e.g. at
+  // the end of a recording.
   std::vector<ReidEvent> finish();
 
   // Whether the next step() would use a scan of this body: pending tracks always, assigned tracks when
@@ -130,28 +168,39 @@ class OnlineReid {
  private:
   struct Score {
     UserId user = 0;
-    double similarity = 0;
+    double similarity = 0;  // appearance + stature term (the appearance alone in a probe's cache)
+    double stature = 0;     // the stature term in `similarity` (<= 0)
     View view = View::F;
-    bool near = false;  // from the probe's own or a complementary view (else the user has none of those)
+    bool near = false;  // from a view compared under --match-views (all views: always)
+    // The best appearance similarity over the user's scans of the probe's own and complementary views
+    // (the same side of the body); none when the user has no such view.
+    std::optional<double> same_side;
   };
   struct Probe {
     View view;
     std::vector<float> descriptor;
     double quality = 0;
     PartialScan scan;
-    std::vector<Score> scores;   // against the whole gallery, best first
+    std::vector<Score> scores;   // appearance against the whole gallery, best first
     int64_t scored_at = -1;      // gallery_version_ the scores belong to
   };
   struct Track {
     std::optional<UserId> user;
     std::vector<Probe> probes;  // pending only: the scans collected so far
+    std::set<UserId> beside;    // pending only: users held by other bodies in frames this one was in
+    StatureTrack stature;
     int frames = 0, last_describe = -1000000, last_verify = 0, strikes = 0;
     double last_seen = 0;
   };
-  // Every user's best similarity to the probe, best first (no exclusions).
+  // Every user's best appearance similarity to the probe, best first (no exclusions).
   std::vector<Score> score_users(const Probe& probe) const;
   // The same, cached in the probe until the gallery changes.
   const std::vector<Score>& scores(Probe& probe);
+  // Appearance scores with the stature term of a track whose stature is `stature`, best first.
+  std::vector<Score> with_stature(std::vector<Score> scores, std::optional<double> stature);
+  // Each user's stature: that of their scan with the most measurements behind it (cached per gallery
+  // version).
+  const std::map<UserId, double>& user_statures();
   bool usable(const ViewEstimate& view) const;
   bool usable(const ReidBody& body) const;  // a view confident enough and a scan good enough
   bool improves(UserId user, View view, double quality) const;
@@ -163,7 +212,8 @@ class OnlineReid {
   void update(uint64_t key, Track& track, const ReidBody& body, std::vector<ReidEvent>& events, int& described);
   std::vector<UserId> users_held_except(uint64_t key) const;
   void leave(uint64_t key, Track& track, std::vector<ReidEvent>& events);
-  GalleryScan gallery_scan(const Probe& probe) const;
+  bool comparable(const GalleryEntry& entry) const;  // made by this matcher in the current layout
+  GalleryScan gallery_scan(const Probe& probe, const Track& track) const;
   void log(const ReidEvent& event);
 
   Gallery& gallery_;
@@ -176,6 +226,8 @@ class OnlineReid {
   int frame_ = 0;
   double now_ = 0;
   int64_t gallery_version_ = 0;  // bumped by every gallery write and by refresh() loading others' writes
+  std::map<UserId, double> user_statures_;
+  int64_t statures_at_ = -1;     // gallery_version_ of user_statures_
 };
 
 }  // namespace bodyrec

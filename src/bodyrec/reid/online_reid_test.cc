@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/reid/stripe_features.h"
 #include "test_support.h"
 
 namespace bodyrec {
@@ -192,17 +193,138 @@ TEST(OnlineReid, ATrackThatJumpsToSomeoneElseIsReleasedAndDecidedAgain) {
   EXPECT_EQ(f.gallery->user_scans(1).size(), 1u);
 }
 
-TEST(OnlineReid, FinishDecidesPendingTracksAndEndsEveryone) {
+TEST(OnlineReid, FinishEndsEveryoneAndAGlimpseLeavesNothing) {
   Fixture f;
-  f.step({body(1, kRed, kBlue, View::F, 0), body(2, kGreen, kYellow, View::F, 1)});
+  for (int i = 0; i < 6; ++i) {
+    std::vector<ReidBody> bodies = {body(1, kRed, kBlue, View::F, i)};
+    if (i == 5) bodies.push_back(body(2, kGreen, kYellow, View::F, 50));  // one frame of someone else
+    f.step(bodies);
+  }
   const std::vector<ReidEvent> events = f.reid->finish();
-  EXPECT_EQ(count(events, ReidEventKind::kEnrolled), 2);
-  EXPECT_EQ(count(events, ReidEventKind::kLeft), 2);
+  EXPECT_EQ(count(events, ReidEventKind::kEnrolled), 0);  // body 2: one scan in one frame is no visit
+  EXPECT_EQ(count(events, ReidEventKind::kLeft), 1);
   EXPECT_EQ(f.reid->live_tracks(), 0u);
+  EXPECT_EQ(f.gallery->user_count(), 1);
   // The gallery's own history holds the same events.
   int left = 0;
   for (const Event& e : f.gallery->events()) left += e.kind == EventKind::kLeft;
-  EXPECT_EQ(left, 2);
+  EXPECT_EQ(left, 1);
+}
+
+ReidBody with_stature(ReidBody b, double stature_m) {
+  b.stature_m = stature_m;
+  return b;
+}
+
+// Person A (1.62 m) comes and goes; later person B, dressed the same but 1.90 m tall, comes: colour
+// alone says "A again", the stature says "someone else".
+std::vector<ReidEvent> lookalike_visits(Fixture& f) {
+  for (int i = 0; i < 6; ++i) f.step({with_stature(body(1, kRed, kBlue, View::F, i), 1.62)});
+  for (int i = 0; i < 40; ++i) f.step({});
+  std::vector<ReidEvent> events;
+  for (int i = 0; i < 10; ++i) {
+    const ReidStep s = f.step({with_stature(body(2, kRed, kBlue, View::F, 100 + i), 1.90)});
+    events.insert(events.end(), s.events.begin(), s.events.end());
+  }
+  return events;
+}
+
+TEST(OnlineReid, LookalikesOfDifferentStaturesAreTwoPeople) {
+  Fixture f;
+  const std::vector<ReidEvent> events = lookalike_visits(f);
+  EXPECT_EQ(count(events, ReidEventKind::kEnrolled), 1);
+  EXPECT_EQ(count(events, ReidEventKind::kRecognised), 0);
+  EXPECT_EQ(f.gallery->user_count(), 2);
+  // Appearance only: B is taken for A (the merge the stature prevents).
+  OnlineReidOptions colour_only;
+  colour_only.stature_weight = 0;
+  Fixture g(colour_only);
+  const std::vector<ReidEvent> merged = lookalike_visits(g);
+  EXPECT_EQ(count(merged, ReidEventKind::kRecognised), 1);
+  EXPECT_EQ(g.gallery->user_count(), 1);
+}
+
+TEST(OnlineReid, AClearReturnOfTheSameStatureIsRecognisedAfterTwoScans) {
+  Fixture f;
+  for (int i = 0; i < 6; ++i) f.step({with_stature(body(1, kRed, kBlue, View::F, i), 1.75)});
+  for (int i = 0; i < 40; ++i) f.step({});
+  EXPECT_FALSE(f.step({with_stature(body(5, kRed, kBlue, View::F, 200), 1.76)}).identities[0].user);
+  const ReidStep s = f.step({with_stature(body(5, kRed, kBlue, View::F, 201), 1.74)});
+  ASSERT_TRUE(s.identities[0].user);  // sure_after 2, not decide_after 4
+  EXPECT_EQ(*s.identities[0].user, 1);
+  EXPECT_EQ(count(s.events, ReidEventKind::kRecognised), 1);
+}
+
+TEST(OnlineReid, ARecognitionWaitsForTheStatureUntilMaxWait) {
+  Fixture f;
+  for (int i = 0; i < 6; ++i) f.step({with_stature(body(1, kRed, kBlue, View::F, i), 1.75)});
+  for (int i = 0; i < 40; ++i) f.step({});
+  // Back with the head out of view (no stature): not recognised on colour alone...
+  for (int i = 0; i < 10; ++i) EXPECT_FALSE(f.step({body(5, kRed, kBlue, View::F, 300 + i)}).identities[0].user) << i;
+  // ...until the stature is measured,
+  EXPECT_EQ(f.step({with_stature(body(5, kRed, kBlue, View::F, 310), 1.75)}).identities[0].user, 1);
+  // or max_wait frames have passed.
+  for (int i = 0; i < 40; ++i) f.step({});
+  std::optional<UserId> user;
+  int frames = 0;
+  while (!user && frames < 40) user = f.step({body(6, kRed, kBlue, View::F, 400 + frames++)}).identities[0].user;
+  EXPECT_EQ(user, 1);
+  EXPECT_EQ(frames, 30);
+}
+
+TEST(OnlineReid, ScansOfAnOlderDescriptorAreDescribedAgainOrRefused) {
+  const ReidBody person = body(1, kRed, kBlue, View::F, 0);
+  const auto old_scan = [&] {
+    GalleryScan g;
+    g.view = View::F;
+    g.image = person.scan->image;
+    g.mask = person.scan->mask;
+    g.features = cv::Mat(1, 1024, CV_32F, cv::Scalar(0.01));  // 8 stripes x 128 bins, as stripes1 stored
+    g.descriptor = "stripes/stripes1";
+    g.descriptor_version = 1;
+    g.quality = 0.7;
+    return g;
+  };
+  testing::TempDir dir;
+  GalleryOptions go;
+  go.create = true;
+  go.sync_full = false;
+  auto matcher = make_matcher("stripes");
+  {
+    Gallery g((dir.path() / "with-images.db").string(), go);
+    g.enrol(old_scan());
+    GalleryScan other = old_scan();  // another matcher's scan: left alone
+    other.view = View::B;
+    other.descriptor = "kaze/kaze1";
+    g.put_scan(1, other);
+    EXPECT_EQ(redescribe_old_scans(g, *matcher), 1);
+    const std::vector<StoredScan> scans = g.user_scans(1);
+    ASSERT_EQ(scans.size(), 2u);
+    EXPECT_EQ(scans[0].descriptor, "stripes/stripes2");
+    EXPECT_EQ(scans[0].descriptor_version, kReidDescriptorVersion);
+    EXPECT_EQ(static_cast<int>(scans[0].features.total()), stripe_length() + kBodyFeatures);
+    EXPECT_DOUBLE_EQ(scans[0].quality, 0.7);
+    EXPECT_EQ(scans[1].descriptor, "kaze/kaze1");
+    EXPECT_EQ(redescribe_old_scans(g, *matcher), 0);  // done once
+    // The person, back, is recognised against the described-again scan.
+    OnlineReid reid(g, *matcher);
+    std::optional<UserId> user;
+    for (int i = 0; i < 6; ++i) user = reid.step(i / 30.0, {body(9, kRed, kBlue, View::F, 10 + i)}).identities[0].user;
+    EXPECT_EQ(user, 1);
+  }
+  go.store_images = false;
+  const std::string path = (dir.path() / "features-only.db").string();
+  Gallery g(path, go);
+  g.enrol(old_scan());
+  try {
+    OnlineReid reid(g, *matcher);
+    ADD_FAILURE() << "an old scan without its image was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("--no-images"), std::string::npos) << what;
+    EXPECT_NE(what.find("stripes/stripes1"), std::string::npos) << what;
+  }
 }
 
 TEST(OnlineReid, OptionsAreChecked) {
@@ -214,6 +336,12 @@ TEST(OnlineReid, OptionsAreChecked) {
   EXPECT_THROW(o.check(), UsageError);
   o = {};
   o.margin = -1;
+  EXPECT_THROW(o.check(), UsageError);
+  o = {};
+  o.stature_weight = -0.1;
+  EXPECT_THROW(o.check(), UsageError);
+  o = {};
+  o.sure_after = 0;
   EXPECT_THROW(o.check(), UsageError);
   EXPECT_NO_THROW(OnlineReidOptions{}.check());
 }

@@ -35,7 +35,8 @@ PartialScanExtractor::PartialScanExtractor(const RecordingMeta& meta, PartialSca
     ray_y_[static_cast<size_t>(v)] = static_cast<float>((meta_.depth.cy - v) / meta_.depth.fy);
 }
 
-cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour) const {
+cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour,
+                                         const GroundPlane* ground, cv::Mat* heights) const {
   const cv::Mat& d = frame.depth;
   const cv::Mat& l = ref.labels;
   if (d.type() != CV_16U || d.cols != meta_.depth.width || d.rows != meta_.depth.height)
@@ -49,6 +50,8 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
   // A depth pixel covers about fx_c / fx_d colour pixels (same distance); splat squares of that size.
   const int half = std::max(1, static_cast<int>(std::ceil(0.5 * kc.fx / meta_.depth.fx)));
   cv::Mat mask(kc.height, kc.width, CV_8U, cv::Scalar(0));
+  const bool with_heights = ground && heights;
+  if (with_heights) heights->create(kc.height, kc.width, CV_32F), heights->setTo(cv::Scalar(std::nanf("")));
   int bu0 = kc.width, bu1 = -1, bv0 = kc.height, bv1 = -1;  // bounding box of the splats
   int body = 0, inside = 0;  // the body's depth pixels, and those landing in the colour image
   bool at_edge = false;      // the body touches the depth image's left or right border (cut off)
@@ -60,7 +63,9 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
       ++body;
       at_edge |= u == 0 || u == d.cols - 1;
       const float z = dep[u] * unit;
-      const cv::Vec3f p = r * cv::Vec3f(ray_x_[static_cast<size_t>(u)] * z, ray_y_[static_cast<size_t>(v)] * z, z) + t;
+      const cv::Vec3f pd(ray_x_[static_cast<size_t>(u)] * z, ray_y_[static_cast<size_t>(v)] * z, z);
+      const cv::Vec3f p = r * pd + t;
+      const float height = with_heights ? static_cast<float>(height_above(*ground, cv::Vec3d(pd))) : 0.f;
       if (p[2] <= 0.05f) continue;
       const int cu = static_cast<int>(std::lround(kc.cx + kc.fx * p[0] / p[2]));
       const int cv_ = static_cast<int>(std::lround(kc.cy - kc.fy * p[1] / p[2]));
@@ -70,6 +75,10 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
       for (int y = v0; y <= v1; ++y) {
         uint8_t* m = mask.ptr<uint8_t>(y);
         for (int x = u0; x <= u1; ++x) m[x] = 255;
+        if (with_heights) {
+          float* hp = heights->ptr<float>(y);
+          for (int x = u0; x <= u1; ++x) hp[x] = height;
+        }
       }
       if (u0 > u1 || v0 > v1) continue;
       bu0 = std::min(bu0, u0), bu1 = std::max(bu1, u1), bv0 = std::min(bv0, v0), bv1 = std::max(bv1, v1);
@@ -91,7 +100,8 @@ cv::Mat PartialScanExtractor::color_mask(const RgbdFrame& frame, const BodyRef& 
 }
 
 std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame, const BodyRef& ref,
-                                                         const ViewEstimate& view, std::string* why) const {
+                                                         const ViewEstimate& view, std::string* why,
+                                                         const GroundPlane* ground) const {
   const auto fail = [&](const std::string& reason) -> std::optional<PartialScan> {
     if (why) *why = reason;
     return std::nullopt;
@@ -101,7 +111,8 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
   if (frame.color.type() != CV_8UC3 || frame.color.cols != meta_.color.width || frame.color.rows != meta_.color.height)
     throw InputError("partial scan: frame " + std::to_string(frame.index) + ": colour must be CV_8UC3 of the colour size");
   double in_colour = 0;
-  const cv::Mat full = color_mask(frame, ref, &in_colour);
+  cv::Mat heights;
+  const cv::Mat full = color_mask(frame, ref, &in_colour, ground, &heights);
   if (full.empty()) return fail("the body has no pixels with depth");
   const cv::Rect tight = cv::boundingRect(full);
   const int pixels = cv::countNonZero(full(tight));
@@ -117,6 +128,22 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
   s.mask = full(s.box).clone();
   s.image = cv::Mat(s.box.size(), CV_8UC3, cv::Scalar(0, 0, 0));
   frame.color(s.box).copyTo(s.image, s.mask);
+  if (ground) {
+    // Per row, the median height of the points splatted into its mask pixels (the closing step fills
+    // pixels that got none).
+    s.row_height_m.assign(static_cast<size_t>(s.box.height), std::nanf(""));
+    std::vector<float> row;
+    for (int y = 0; y < s.box.height; ++y) {
+      row.clear();
+      const float* hp = heights.ptr<float>(s.box.y + y) + s.box.x;
+      const uint8_t* m = s.mask.ptr<uint8_t>(y);
+      for (int x = 0; x < s.box.width; ++x)
+        if (m[x] && std::isfinite(hp[x])) row.push_back(hp[x]);
+      if (row.empty()) continue;
+      std::nth_element(row.begin(), row.begin() + static_cast<long>(row.size() / 2), row.end());
+      s.row_height_m[static_cast<size_t>(y)] = row[row.size() / 2];
+    }
+  }
 
   // Sharpness: Laplacian variance inside the eroded mask (the mask edge itself is not texture).
   cv::Mat grey, lap, inner;
@@ -156,7 +183,9 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
     s.feet = visible(idx(Joint::kFootLeft)) || visible(idx(Joint::kAnkleLeft));
     s.feet = s.feet && (visible(idx(Joint::kFootRight)) || visible(idx(Joint::kAnkleRight)));
     s.completeness = tracked ? static_cast<double>(seen) / tracked : 0.0;
-    if (!s.head || !s.feet) s.completeness *= 0.5;
+    // Without heights a descriptor places colours by image row: a body cut at the head or feet would
+    // misplace them. With heights (row_height_m) the visible part stays where it belongs.
+    if ((!s.head || !s.feet) && !ground) s.completeness *= 0.5;
   } else {
     const auto a = depth_axis(frame.depth, meta_.depth_unit_m, meta_.depth, ref.labels, ref.label);
     const double height = a ? a->height_m : 0.0;

@@ -9,7 +9,8 @@
 // Quality in 0..1 = completeness x (0.5 + 0.5 sharpness) x (0.5 + 0.5 resolution):
 //   completeness: with a skeleton, the share of the body's tracked joints whose depth pixel (within
 //     2 px) belongs to the body and lies inside both images (occluded or clipped joints count against),
-//     times 0.5 when the head or both feet are missing; without one, the body's vertical extent over
+//     times 0.5 when the head or both feet are missing and no ground plane is given (without heights a
+//     descriptor would place the visible part's colours by image row, wrongly); without one, the body's vertical extent over
 //     1.6 m (capped at 1), times 0.6 when the mask touches the image border (clipped), times the share
 //     of the body's depth pixels that land inside the colour image (the colour camera sees less than
 //     the depth camera at the top and bottom, and a body entering at the side shows only a sliver),
@@ -29,6 +30,7 @@
 #include <opencv2/core.hpp>
 
 #include "bodyrec/reid/orientation_estimator.h"
+#include "bodyrec/rgbd/ground_plane.h"
 #include "bodyrec/rgbd/recording.h"
 
 namespace bodyrec {
@@ -46,6 +48,9 @@ struct PartialScan {
   double quality = 0;        // 0..1
   bool head = false, feet = false;  // head / both feet visible (skeleton), or top/bottom not clipped
   ViewEstimate view;         // as given to extract()
+  // With a ground plane: per row of the crop, the median height above the floor (metres) of the depth
+  // points splatted into that row's mask pixels; NaN for rows without any. Empty without a plane.
+  std::vector<float> row_height_m;
 };
 
 struct PartialScanOptions {
@@ -61,14 +66,17 @@ class PartialScanExtractor {
 
   // The scan of body `ref` (its pixels in ref.labels == ref.label; ref.body optional). nullopt with
   // `why` set when the frame has no colour or depth, or the body maps to fewer than min_pixels colour
-  // pixels. Throws InputError when the images disagree with the meta in type or size.
+  // pixels. Throws InputError when the images disagree with the meta in type or size. With `ground`
+  // (rgbd/ground_plane.h, depth camera space) the scan gets row_height_m.
   std::optional<PartialScan> extract(const RgbdFrame& frame, const BodyRef& ref, const ViewEstimate& view,
-                                     std::string* why = nullptr) const;
+                                     std::string* why = nullptr, const GroundPlane* ground = nullptr) const;
 
   // The person's mask in full colour-image coordinates (CV_8U, 255 person), as extract() builds it
   // before cropping; empty when the body has no pixels.
-  // `in_colour`, when given, receives PartialScan::in_colour.
-  cv::Mat color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour = nullptr) const;
+  // `in_colour`, when given, receives PartialScan::in_colour. With `ground` and `heights`, *heights
+  // receives a CV_32F colour-size image of each splatted pixel's height above the plane (NaN elsewhere).
+  cv::Mat color_mask(const RgbdFrame& frame, const BodyRef& ref, double* in_colour = nullptr,
+                     const GroundPlane* ground = nullptr, cv::Mat* heights = nullptr) const;
 
  private:
   RecordingMeta meta_;

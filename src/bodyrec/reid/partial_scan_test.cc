@@ -1,11 +1,13 @@
 #include "bodyrec/reid/partial_scan.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/rgbd/ground_plane.h"
 #include "bodyrec/rgbd/segment.h"
 #include "bodyrec/rgbd/synth.h"
 
@@ -96,6 +98,40 @@ TEST_F(PartialScanOnOnePerson, MaskCoversTheTruePixelsAndQualityDropsWhenClipped
   EXPECT_GE(sum_iou / full, 0.96);
   EXPECT_GT(worst_full, 0.9);
   EXPECT_LT(best_clipped, best_full);
+}
+
+// With the floor: every row of the crop knows its height above it, from the head's top to the feet.
+TEST_F(PartialScanOnOnePerson, RowHeightsRunFromTheHeadDownToTheFloor) {
+  PartialScanExtractor scans(synth_->meta());
+  int checked = 0;
+  for (int i = 0; i < o_.frames; i += 3) {
+    const RgbdFrame f = synth_->render(i);
+    if (f.bodies.empty() || f.truth->people[0].visible_fraction < 0.95) continue;
+    const auto ground = fit_ground_plane(f.depth, synth_->meta().depth, synth_->meta().depth_unit_m);
+    ASSERT_TRUE(ground) << "frame " << i;
+    const BodyRef ref = BodyRef::of(f.bodies[0], f.body_index);
+    const auto plain = scans.extract(f, ref, ViewEstimate{});
+    const auto s = scans.extract(f, ref, ViewEstimate{}, nullptr, &*ground);
+    ASSERT_TRUE(plain && s);
+    EXPECT_TRUE(plain->row_height_m.empty());
+    ASSERT_EQ(static_cast<int>(s->row_height_m.size()), s->image.rows);
+    EXPECT_EQ(s->image.size(), plain->image.size());  // the heights change nothing else
+    // The first and last rows with a height: the head's top (the person's stature, a few cm of hair or
+    // hat aside) and the feet.
+    float top = NAN, bottom = NAN;
+    int rising = 0, rows = 0;
+    for (float h : s->row_height_m) {
+      if (!std::isfinite(h)) continue;
+      if (std::isnan(top)) top = h;
+      if (std::isfinite(bottom)) rising += h > bottom + 0.05f, ++rows;
+      bottom = h;
+    }
+    EXPECT_NEAR(top, f.truth->people[0].height_m, 0.06) << "frame " << i;
+    EXPECT_LT(bottom, 0.15) << "frame " << i;
+    EXPECT_LT(rising, std::max(2, rows / 50)) << "frame " << i;  // heights fall from row to row
+    ++checked;
+  }
+  EXPECT_GT(checked, 5);
 }
 
 // Without a body index: the depth segmentation's label of the person gives the mask.

@@ -10,45 +10,85 @@
 namespace bodyrec {
 
 void StripeOptions::check() const {
-  if (stripes < 1 || stripes > 64) throw UsageError("stripe features: stripes must be 1..64");
+  if (bands < 1 || bands > 64) throw UsageError("stripe features: bands must be 1..64");
+  if (!(band_m > 0)) throw UsageError("stripe features: band_m must be positive");
+  if (!(assumed_stature_m > 0)) throw UsageError("stripe features: assumed_stature_m must be positive");
+  if (!(min_band_share >= 0 && min_band_share < 1)) throw UsageError("stripe features: min_band_share must be in [0, 1)");
   if (hue_bins < 1 || sat_bins < 1 || val_bins < 1 || hue_bins * sat_bins * val_bins > 4096)
-    throw UsageError("stripe features: bins must be positive and at most 4096 per stripe");
+    throw UsageError("stripe features: bins must be positive and at most 4096 per band");
+  if (min_common < 1 || min_common > bands) throw UsageError("stripe features: min_common must be 1..bands");
+  if (!(compared_bands > 0)) throw UsageError("stripe features: compared_bands must be positive");
 }
 
-int stripe_length(const StripeOptions& o) { return o.stripes * o.hue_bins * o.sat_bins * o.val_bins; }
+int stripe_length(const StripeOptions& o) { return o.bands * o.hue_bins * o.sat_bins * o.val_bins; }
 
 std::vector<float> stripe_features(const PersonImage& image, const StripeOptions& o) {
   o.check();
   CV_Assert(image.bgr.type() == CV_8UC3 && !image.bgr.empty());
   CV_Assert(image.mask.empty() || (image.mask.type() == CV_8U && image.mask.size() == image.bgr.size()));
+  CV_Assert(image.row_height_m.empty() || static_cast<int>(image.row_height_m.size()) == image.bgr.rows);
   // Full resolution, no resampling: a resized image would blend background into the body's edge.
   const cv::Mat& mask = image.mask;
   cv::Mat hsv;
   cv::cvtColor(image.bgr, hsv, cv::COLOR_BGR2HSV);  // H 0..179
   const int rows = hsv.rows, cols = hsv.cols;
-  const int per_stripe = o.hue_bins * o.sat_bins * o.val_bins;
+  const int per_band = o.hue_bins * o.sat_bins * o.val_bins;
   std::vector<float> f(static_cast<size_t>(stripe_length(o)), 0.f);
+  std::vector<double> sums(static_cast<size_t>(o.bands), 0.0);
+  double total = 0;
   for (int y = 0; y < rows; ++y) {
-    const int stripe = static_cast<int>(static_cast<int64_t>(y) * o.stripes / rows);
-    float* h = f.data() + static_cast<size_t>(stripe) * per_stripe;
+    const double h = image.row_height_m.empty() ? (1.0 - (y + 0.5) / rows) * o.assumed_stature_m
+                                                : image.row_height_m[static_cast<size_t>(y)];
+    if (!std::isfinite(h)) continue;  // a row of the scan whose height was not measured
+    const int band = static_cast<int>(std::floor(h / o.band_m));
+    if (band < 0 || band >= o.bands) continue;
+    float* hist = f.data() + static_cast<size_t>(band) * per_band;
     const cv::Vec3b* p = hsv.ptr<cv::Vec3b>(y);
     const uint8_t* m = mask.empty() ? nullptr : mask.ptr<uint8_t>(y);
     for (int x = 0; x < cols; ++x) {
       if (m && !m[x]) continue;
       const int hb = std::min(p[x][0] * o.hue_bins / 180, o.hue_bins - 1);
       const int sb = p[x][1] * o.sat_bins / 256, vb = p[x][2] * o.val_bins / 256;
-      h[(hb * o.sat_bins + sb) * o.val_bins + vb] += 1.f;
+      hist[(hb * o.sat_bins + sb) * o.val_bins + vb] += 1.f;
+      sums[static_cast<size_t>(band)] += 1;
+      total += 1;
     }
   }
-  for (int s = 0; s < o.stripes; ++s) {
-    float* h = f.data() + static_cast<size_t>(s) * per_stripe;
-    double sum = 0;
-    for (int i = 0; i < per_stripe; ++i) sum += h[i];
-    if (sum <= 0) continue;
-    // sqrt(p / 2): the squared distance of two stripes is then their squared Hellinger distance (0..1).
-    for (int i = 0; i < per_stripe; ++i) h[i] = static_cast<float>(std::sqrt(h[i] / sum / 2));
+  for (int b = 0; b < o.bands; ++b) {
+    float* hist = f.data() + static_cast<size_t>(b) * per_band;
+    const double sum = sums[static_cast<size_t>(b)];
+    // Too few pixels to say what colours the band has (a sliver at the edge of an occlusion): empty.
+    if (sum <= 0 || sum < o.min_band_share * total) {
+      std::fill(hist, hist + per_band, 0.f);
+      continue;
+    }
+    // sqrt(p / 2): the squared distance of two bands is then their squared Hellinger distance (0..1).
+    for (int i = 0; i < per_band; ++i) hist[i] = static_cast<float>(std::sqrt(hist[i] / sum / 2));
   }
   return f;
+}
+
+std::optional<double> stripe_distance(const std::vector<float>& a, const std::vector<float>& b, const StripeOptions& o) {
+  const size_t per_band = static_cast<size_t>(o.hue_bins * o.sat_bins * o.val_bins);
+  CV_Assert(a.size() == static_cast<size_t>(stripe_length(o)) && b.size() == a.size());
+  double d = 0;
+  int common = 0;
+  for (size_t s = 0; s < static_cast<size_t>(o.bands); ++s) {
+    const float* x = a.data() + s * per_band;
+    const float* y = b.data() + s * per_band;
+    double nx = 0, ny = 0, dd = 0;
+    for (size_t i = 0; i < per_band; ++i) {
+      nx += x[i] * x[i];
+      ny += y[i] * y[i];
+      const double t = x[i] - y[i];
+      dd += t * t;
+    }
+    if (nx <= 0 || ny <= 0) continue;  // a band one of them does not show
+    d += dd;
+    ++common;
+  }
+  if (common < o.min_common) return std::nullopt;
+  return d * o.compared_bands / common;
 }
 
 }  // namespace bodyrec

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/rgbd/ground_plane.h"
 #include "bodyrec/rgbd/recording.h"
 
 namespace bodyrec {
@@ -65,66 +66,9 @@ void DepthSegmenter::learn_background(const cv::Mat& depth) {
 }
 
 std::optional<cv::Vec4d> DepthSegmenter::fit_ground(const cv::Mat& depth) {
-  // Samples: every 4th pixel of the lower 2/3 of the image (the floor is below the horizon of a
-  // roughly level sensor).
-  std::vector<cv::Vec3d> pts;
-  for (int v = k_.height / 3; v < k_.height; v += 4) {
-    const uint16_t* d = depth.ptr<uint16_t>(v);
-    for (int u = 0; u < k_.width; u += 4) {
-      if (!d[u]) continue;
-      const double z = d[u] * unit_;
-      if (z > options_.max_range_m) continue;
-      pts.emplace_back(ray_x_[static_cast<size_t>(u)] * z, ray_y_[static_cast<size_t>(v)] * z, z);
-    }
-  }
-  if (pts.size() < 50) return std::nullopt;
-  rng_state_ = 0x9e3779b97f4a7c15ULL;  // the same depth image gives the same plane, in any order
-  const auto next = [this] {  // xorshift64*: deterministic, independent of the C library
-    rng_state_ ^= rng_state_ >> 12;
-    rng_state_ ^= rng_state_ << 25;
-    rng_state_ ^= rng_state_ >> 27;
-    return rng_state_ * 2685821657736338717ULL;
-  };
-  const double tol = 0.03;
-  cv::Vec4d best;
-  size_t best_count = 0;
-  for (int it = 0; it < 120; ++it) {
-    const cv::Vec3d& a = pts[next() % pts.size()];
-    const cv::Vec3d& b = pts[next() % pts.size()];
-    const cv::Vec3d& c = pts[next() % pts.size()];
-    cv::Vec3d n = (b - a).cross(c - a);
-    const double len = cv::norm(n);
-    if (len < 1e-9) continue;
-    n /= len;
-    if (n[1] < 0) n = -n;
-    if (n[1] < std::cos(35.0 * CV_PI / 180.0)) continue;  // not a floor for a roughly level sensor
-    const double d = -n.dot(a);
-    if (d < 0.3) continue;  // the camera must be above it (excludes the ceiling and table tops at eye level)
-    size_t count = 0;
-    for (const auto& p : pts) count += std::abs(n.dot(p) + d) < tol;
-    if (count > best_count) {
-      best_count = count;
-      best = {n[0], n[1], n[2], d};
-    }
-  }
-  if (best_count < std::max<size_t>(50, pts.size() / 20)) return std::nullopt;
-  // Least-squares refinement: the smallest principal axis of the inliers.
-  cv::Vec3d mean(0, 0, 0);
-  std::vector<cv::Vec3d> in;
-  for (const auto& p : pts)
-    if (std::abs(best[0] * p[0] + best[1] * p[1] + best[2] * p[2] + best[3]) < tol) in.push_back(p);
-  for (const auto& p : in) mean += p;
-  mean /= static_cast<double>(in.size());
-  cv::Matx33d cov = cv::Matx33d::zeros();
-  for (const auto& p : in) {
-    const cv::Vec3d q = p - mean;
-    cov += q * q.t();
-  }
-  cv::Mat evals, evecs;
-  cv::eigen(cv::Mat(cov), evals, evecs);
-  cv::Vec3d n(evecs.at<double>(2, 0), evecs.at<double>(2, 1), evecs.at<double>(2, 2));
-  if (n[1] < 0) n = -n;
-  return cv::Vec4d(n[0], n[1], n[2], -n.dot(mean));
+  GroundPlaneOptions g;
+  g.max_range_m = options_.max_range_m;
+  return fit_ground_plane(depth, k_, unit_, g);
 }
 
 Segmentation DepthSegmenter::segment(const cv::Mat& depth) {

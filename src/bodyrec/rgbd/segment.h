@@ -78,7 +78,6 @@ class DepthSegmenter {
   std::vector<float> ray_x_, ray_y_;
   cv::Mat background_;  // CV_16U, 0 = unknown
   std::optional<cv::Vec4d> last_ground_;
-  uint64_t rng_state_ = 0x9e3779b97f4a7c15ULL;
 };
 
 class RecordingReader;

@@ -1,4 +1,5 @@
-// Depth-only segmentation on ray-cast scenes with known geometry: a floor, a back wall and box people.
+// Depth-only segmentation on ray-cast scenes with known geometry (tests/box_scene.h): a floor, a back
+// wall and box people.
 #include "bodyrec/rgbd/segment.h"
 
 #include <gtest/gtest.h>
@@ -6,42 +7,15 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/rgbd/recording.h"
 
+#include "box_scene.h"
 #include "test_support.h"
 
 namespace bodyrec {
 namespace {
 
-struct Slab {  // an axis-aligned box facing the camera: x0..x1, floor-relative y0..y1, at depth z
-  double x0, x1, y0, y1, z;
-};
-
-// Kinect v2 depth camera 1 m above a floor (Y = -1), back wall at 6 m, slabs in between (mm depth).
-cv::Mat render(const std::vector<Slab>& slabs) {
-  const Intrinsics k = kinect2_depth_intrinsics();
-  cv::Mat depth(k.height, k.width, CV_16U);
-  for (int v = 0; v < k.height; ++v)
-    for (int u = 0; u < k.width; ++u) {
-      const double rx = (u - k.cx) / k.fx, ry = (k.cy - v) / k.fy;
-      double z = 6.0;                                    // back wall
-      if (ry < 0) z = std::min(z, -1.0 / ry);            // floor
-      for (const Slab& s : slabs) {
-        const double x = rx * s.z, y = ry * s.z + 1.0;   // height above the floor
-        if (s.z < z && x >= s.x0 && x <= s.x1 && y >= s.y0 && y <= s.y1) z = s.z;
-      }
-      depth.at<uint16_t>(v, u) = static_cast<uint16_t>(std::lround(z * 1000));
-    }
-  return depth;
-}
-
-// A box person: 0.5 m wide body up to 1.5 m, a 0.2 m head up to `height`, centred at x.
-std::vector<Slab> person(double x, double z, double height = 1.75) {
-  return {{x - 0.25, x + 0.25, 0.0, 1.5, z}, {x - 0.1, x + 0.1, 1.5, height, z}};
-}
-
-std::vector<Slab> operator+(std::vector<Slab> a, const std::vector<Slab>& b) {
-  a.insert(a.end(), b.begin(), b.end());
-  return a;
-}
+using testing::person;
+using testing::render;
+using testing::Slab;
 
 TEST(DepthSegmenter, FindsTwoSeparatePeopleWithGroundAndHeights) {
   DepthSegmenter seg(kinect2_depth_intrinsics(), 0.001);

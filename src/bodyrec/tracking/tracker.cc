@@ -15,6 +15,7 @@ struct MultiTracker::Track {
   TrackState state = TrackState::kTentative;
   int hits = 1;
   int frames_since_match = 0;
+  int detection = -1;  // index into the caller's detections matched on the last update, -1 none
 };
 
 void TrackerOptions::check() const {
@@ -67,8 +68,13 @@ std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vect
                                                 bool may_start_tracks) {
   advance_to(frame_index);
   std::vector<Detection> detections;
-  for (const auto& d : all_detections)
-    if (d.score >= options_.min_score) detections.push_back(d);
+  std::vector<int> original;  // index of each kept detection in all_detections
+  for (size_t i = 0; i < all_detections.size(); ++i)
+    if (all_detections[i].score >= options_.min_score) {
+      detections.push_back(all_detections[i]);
+      original.push_back(static_cast<int>(i));
+    }
+  for (auto& t : tracks_) t->detection = -1;
   const int n_tracks = static_cast<int>(tracks_.size()), n_dets = static_cast<int>(detections.size());
   std::vector<Box> predicted(n_tracks);
   for (int t = 0; t < n_tracks; ++t) predicted[t] = tracks_[t]->filter.box();
@@ -115,6 +121,7 @@ std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vect
     Track& track = *tracks_[t];
     if (match_of_track[t] >= 0) {
       track.filter.correct(detections[match_of_track[t]].box);
+      track.detection = original[static_cast<size_t>(match_of_track[t])];
       ++track.hits;
       track.frames_since_match = 0;
       if (track.state == TrackState::kLost) track.state = TrackState::kConfirmed;
@@ -135,6 +142,7 @@ std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vect
   for (int d = 0; d < n_dets; ++d) {
     if (!may_start_tracks || det_used[d] || detections[d].score < options_.new_track_score) continue;
     auto track = std::make_unique<Track>(detections[d].box, options_.noise);
+    track->detection = original[static_cast<size_t>(d)];
     if (options_.min_hits <= 1) {
       track->state = TrackState::kConfirmed;
       track->id = next_id_++;
@@ -146,6 +154,7 @@ std::vector<TrackedPerson> MultiTracker::update(int frame_index, const std::vect
 
 std::vector<TrackedPerson> MultiTracker::predict_only(int frame_index) {
   advance_to(frame_index);
+  for (auto& t : tracks_) t->detection = -1;
   return report();
 }
 
@@ -156,6 +165,7 @@ TrackedPerson MultiTracker::view(const Track& track) {
   p.state = track.state;
   p.hits = track.hits;
   p.frames_since_match = track.frames_since_match;
+  p.detection = track.detection;
   return p;
 }
 

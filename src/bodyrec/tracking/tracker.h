@@ -50,6 +50,7 @@ struct TrackedPerson {
   TrackState state = TrackState::kTentative;
   int hits = 0;                 // detections matched so far
   int frames_since_match = 0;   // 0 on a frame where a detection was matched
+  int detection = -1;           // index into update()'s detections matched on this frame, -1 none
 };
 
 class MultiTracker {

@@ -92,6 +92,24 @@ TEST(MultiTracker, SingleFalseAlarmsAreNeverConfirmed) {
   }
 }
 
+TEST(MultiTracker, EachTrackSaysWhichDetectionItGot) {
+  MultiTracker tracker;
+  for (int f = 0; f < 10; ++f) {
+    // A weak box first (below min_score 0.3: ignored), then B, then A: indices into this very list.
+    const std::vector<Detection> d = {{Box(600, 20, 30, 70), 0.1}, {person_b(f), 1.0}, {person_a(f), 1.0}};
+    for (const TrackedPerson& t : tracker.all_tracks()) EXPECT_NE(t.detection, 0);
+    const auto tracks = tracker.update(f, d);
+    for (const TrackedPerson& t : tracker.all_tracks()) {
+      ASSERT_GE(t.detection, 1) << "frame " << f;
+      EXPECT_GT(iou(t.box, d[static_cast<size_t>(t.detection)].box), 0.7) << "frame " << f;
+    }
+    if (f >= 2) {
+      ASSERT_EQ(tracks.size(), 2u);
+    }
+  }
+  for (const TrackedPerson& t : tracker.predict_only(10)) EXPECT_EQ(t.detection, -1);
+}
+
 TEST(MultiTracker, LostTracksAreReportedForCoastFramesAndDeletedAfterMaxAge) {
   TrackerOptions o;
   o.max_age = 10;
