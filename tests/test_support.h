@@ -70,21 +70,25 @@ std::vector<std::string> lines_of(const std::string& text);
 // "bodyrec: error: " and containing `names` (the file, frame or field at fault).
 void expect_one_line_error(const RunResult& r, int code, const std::string& names);
 
-// Runs `parse` and returns the InputError message ("" and a test failure when nothing or something else
-// is thrown).
-template <typename F>
-std::string input_error(F parse) {
+// Runs `f` and returns the message of the `Error` it throws ("" and a test failure when nothing or
+// something else is thrown).
+template <typename Error, typename F>
+std::string thrown_message(F f, const char* expected) {
   try {
-    parse();
-  } catch (const InputError& e) {
+    f();
+  } catch (const Error& e) {
     return e.what();
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError, got: " << e.what();
+    ADD_FAILURE() << "expected " << expected << ", got: " << e.what();
     return "";
   }
-  ADD_FAILURE() << "expected InputError, nothing thrown";
+  ADD_FAILURE() << "expected " << expected << ", nothing thrown";
   return "";
 }
+template <typename F>
+std::string input_error(F parse) { return thrown_message<InputError>(parse, "InputError"); }
+template <typename F>
+std::string usage_error(F f) { return thrown_message<UsageError>(f, "UsageError"); }
 void write_text(const std::filesystem::path& path, const std::string& text);
 
 // A synthetic recording made once per test program with `bodyrec synth SYNTH_ARGS --out DIR -q` in a

@@ -20,33 +20,8 @@
 namespace bodyrec {
 namespace {
 
-LandmarkDataset drawn_people(int count, uint64_t first_seed, int landmarks) {
-  LandmarkDataset data;
-  data.landmarks = landmarks;
-  ContourOptions o;
-  o.landmarks = landmarks;
-  for (int i = 0; i < count; ++i) {
-    const auto s = testing::make_silhouette(cv::Size(120, 150), 120, first_seed + static_cast<uint64_t>(i));
-    const BodyContour c = contour_from_mask(s.mask, o);
-    EXPECT_EQ(c.status, ContourStatus::kOk);
-    AnnotatedImage image;
-    image.path = "drawn" + std::to_string(i);
-    image.image = s.image;
-    image.people.push_back({Box(c.bounds), c.points, false});
-    data.images.push_back(std::move(image));
-  }
-  return data;
-}
-
-template <typename F>
-std::string usage_error(F f) {
-  try {
-    f();
-  } catch (const UsageError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected UsageError";
-  return "";
+LandmarkDataset drawn_people(int count, uint64_t first_seed) {
+  return testing::silhouette_dataset(count, first_seed, 60, cv::Size(120, 150), 120, "drawn");
 }
 
 ShapeTrainOptions small_net(int iterations) {
@@ -83,13 +58,13 @@ TEST(MaskNet, OptionsAreChecked) {
   MaskNetTrainOptions o;
   EXPECT_NO_THROW(o.check());
   o.input_width = 30;
-  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--net-size"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--net-size"));
   o = MaskNetTrainOptions();
   o.iterations = 0;
-  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--iterations"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--iterations"));
   o = MaskNetTrainOptions();
   o.box_jitter = 0.9;
-  EXPECT_TRUE(testing::contains(usage_error([&] { o.check(); }), "--box-jitter"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--box-jitter"));
   EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
 }
 
@@ -97,7 +72,7 @@ TEST(MaskNet, OptionsAreChecked) {
 class TrainedMaskNet : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    train_ = new LandmarkDataset(drawn_people(24, 100, 60));
+    train_ = new LandmarkDataset(drawn_people(24, 100));
     model_ = new BodyShapeModel(train_body_shape(*train_, small_net(300)));
   }
   static void TearDownTestSuite() {
@@ -113,7 +88,7 @@ BodyShapeModel* TrainedMaskNet::model_ = nullptr;
 TEST_F(TrainedMaskNet, RecoversTheOutlinesOfUnseenSilhouettes) {
   EXPECT_EQ(model_->kind(), BodyShapeModel::Kind::kMaskNet);
   EXPECT_EQ(model_->landmarks(), 60);
-  const LandmarkDataset test = drawn_people(8, 900, 60);
+  const LandmarkDataset test = drawn_people(8, 900);
   const LandmarkScores fit = evaluate_body_shape(*model_, test, "drawn");
   EXPECT_EQ(fit.persons, 8);
   // People are 120 px tall; their outlines are numbered like the truth, so points do not slide.

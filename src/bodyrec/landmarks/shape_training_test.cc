@@ -15,22 +15,9 @@ namespace bodyrec {
 namespace {
 
 LandmarkDataset synthetic_people(int count, uint64_t first_seed, int landmarks) {
-  LandmarkDataset data;
-  data.landmarks = landmarks;
-  ContourOptions o;
-  o.landmarks = landmarks;
-  for (int i = 0; i < count; ++i) {
-    const auto s = testing::make_silhouette(cv::Size(140, 170), 140, first_seed + static_cast<uint64_t>(i));
-    const BodyContour c = contour_from_mask(s.mask, o);
-    EXPECT_EQ(c.status, ContourStatus::kOk);
-    AnnotatedImage image;
-    image.path = "synthetic" + std::to_string(i);
-    image.image = s.image;
-    image.people.push_back({Box(c.bounds), c.points, false});
-    data.images.push_back(std::move(image));
-  }
-  return data;
+  return testing::silhouette_dataset(count, first_seed, landmarks, cv::Size(140, 170), 140, "synthetic");
 }
+
 
 ShapeTrainOptions small_options() {
   ShapeTrainOptions o;
