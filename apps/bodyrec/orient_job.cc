@@ -10,6 +10,7 @@
 #include "bodyrec/rgbd/ntu_skeleton.h"
 #include "bodyrec/rgbd/segment.h"
 #include "bodyrec/tracking/floor_tracker.h"
+#include "bodyrec/tracking/slot_keys.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -43,24 +44,19 @@ void merge_fragments(Segmentation& seg, double within_m) {
 // Where the bodies of a label image (body index or segmentation, labels 0..5) stand: per label, the
 // median camera X and Z of its depth points (medians: edge pixels with the background's depth do not
 // pull), whether it touches the image's first or last column, and its pixel counts.
-struct LabelFloor {
-  cv::Vec2d floor{0, 0};
-  bool at_side = false;
-  int pixels = 0;        // label pixels
-  int with_depth = 0;    // of which with depth (floor is valid when > 0)
-};
 std::array<LabelFloor, kMaxBodies> label_floors(const cv::Mat& labels, const cv::Mat& depth, const RecordingMeta& meta) {
   std::array<LabelFloor, kMaxBodies> out{};
   std::array<std::vector<float>, kMaxBodies> xs, zs;
   const bool has_depth = !depth.empty() && depth.size() == labels.size() && depth.type() == CV_16U;
   for (int v = 0; v < labels.rows; ++v) {
     const uint8_t* l = labels.ptr<uint8_t>(v);
+    const uint16_t* dv = has_depth ? depth.ptr<uint16_t>(v) : nullptr;
     for (int u = 0; u < labels.cols; ++u) {
       if (l[u] >= kMaxBodies) continue;
       LabelFloor& b = out[l[u]];
       ++b.pixels;
       b.at_side |= u == 0 || u == labels.cols - 1;
-      const uint16_t d = has_depth ? depth.at<uint16_t>(v, u) : 0;
+      const uint16_t d = dv ? dv[u] : 0;
       if (!d) continue;
       const double z = d * meta.depth_unit_m;
       xs[l[u]].push_back(static_cast<float>((u - meta.depth.cx) / meta.depth.fx * z));
@@ -77,39 +73,6 @@ std::array<LabelFloor, kMaxBodies> label_floors(const cv::Mat& labels, const cv:
   }
   return out;
 }
-
-// Keys for body-index slots (a sensor that gives the body index but no tracking ids). A slot keeps its
-// key while it shows the same body; it gets a new one when
-//  - it was empty for over a third of a second after its body touched the image's side (it walked out:
-//    the slot may go to whoever comes in next), or for over 3 s;
-//  - its body's floor position jumped farther than a walker could go in the time since it was last
-//    seen (1 m, a body's width and a half, + 2 m/s x gap): the sensor gave the slot to someone else.
-// A body hidden behind someone for a while keeps its key when it shows again near where it vanished.
-class SlotKeys {
- public:
-  uint64_t key(int slot, double t, const LabelFloor& now) {
-    State& s = slots_[static_cast<size_t>(slot)];
-    const double gap = t - s.t;
-    const bool fresh = !s.appearance || gap > 3.0 || (gap > 1.0 / 3.0 && s.at_side) ||
-                       (now.with_depth && s.pixels && cv::norm(now.floor - s.floor) > 1.0 + 2.0 * gap);
-    if (fresh) s.appearance = ++appearances_;
-    s.t = t;
-    s.at_side = now.at_side;
-    if (now.with_depth) s.floor = now.floor, s.pixels = now.with_depth;
-    return 1000000 + 10 * s.appearance + static_cast<uint64_t>(slot);
-  }
-
- private:
-  struct State {
-    uint64_t appearance = 0;
-    double t = 0;
-    cv::Vec2d floor{0, 0};
-    bool at_side = false;
-    int pixels = 0;
-  };
-  std::array<State, kMaxBodies> slots_{};
-  uint64_t appearances_ = 0;
-};
 
 // The truth person whose body-index pixels overlap this label most (at least half of its pixels); without
 // a body index, the one whose depth box overlaps the segment's box most (IoU >= 0.3).
@@ -161,6 +124,12 @@ void add_orient_options(CLI::App& sub, OrientCliOptions& options) {
   add_segment_options(sub, options.seg);
 }
 
+bool uses_own_segmentation(const RecordingMeta& meta, const OrientCliOptions& options) {
+  return options.bodies_from == "depth" ||
+         (options.bodies_from == "auto" && meta.streams.depth && !meta.streams.body_index &&
+          (!meta.streams.bodies || options.depth_only));
+}
+
 bool is_skeleton_file(const std::string& input) {
   return input.size() > 9 && input.compare(input.size() - 9, 9, ".skeleton") == 0;
 }
@@ -208,10 +177,8 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
 
   OrientationEstimator estimator(meta, eo);
   std::optional<DepthSegmenter> segmenter;
-  if (from == "depth" ||
-      (from == "auto" && reader && meta.streams.depth && !meta.streams.body_index && (!meta.streams.bodies || options.depth_only)))
-    segmenter = make_segmenter(*reader, options.seg);
-  SlotKeys slot_keys;
+  if (reader && uses_own_segmentation(meta, options)) segmenter = make_segmenter(*reader, options.seg);
+  SlotKeys slot_keys(1.0 / meta.fps);
   FloorTracker floor_tracker;  // depth-only keys
   cv::Mat labels;
   int done = 0;

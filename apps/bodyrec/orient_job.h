@@ -56,4 +56,8 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
 // The meta of a recording, or the fitted cameras of an NTU file (bodies only).
 bool is_skeleton_file(const std::string& input);
 
+// Whether run_orientation finds the bodies of a recording with `meta` by its own depth segmentation
+// (--bodies-from depth, or auto on a recording with depth but neither body index nor usable skeletons).
+bool uses_own_segmentation(const RecordingMeta& meta, const OrientCliOptions& options);
+
 }  // namespace bodyrec::cli

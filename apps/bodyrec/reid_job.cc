@@ -37,6 +37,13 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
       ->capture_default_str();
   sub.add_option("--max-wait", o.reid.max_wait_frames, "Frames after which a body is decided with the scans it has")
       ->capture_default_str();
+  sub.add_option("--stature-wait", o.stature_wait,
+                 "Frames a body whose stature is not measured yet (head hidden) waits before it is recognised as a "
+                 "user whose stature is known, so that people who dress alike are not taken for each other (the "
+                 "--max-wait decision comes first when sooner). Default: 30, and 0 when the bodies come from "
+                 "bodyrec's own depth segmentation, whose statures are often refused (people side by side)")
+      ->check(CLI::NonNegativeNumber)
+      ->default_str("30, depth: 0");
   sub.add_option("--min-quality", o.reid.min_quality, "Partial scans below this quality (0..1) are not used")
       ->capture_default_str();
   sub.add_option("--threshold", o.reid.threshold,
@@ -86,6 +93,10 @@ ReidInput open_reid_input(const std::string& input, const ReidCliOptions& option
 int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gallery,
              const std::function<void(const ReidFrame&)>& sink) {
   OnlineReidOptions ro = options.reid;
+  // Our own segmentation refuses many statures (a body with someone beside it): waiting for one there
+  // leaves bodies undecided for a second without keeping apart any look-alikes (docs/benchmarks.md).
+  if (options.stature_wait >= 0) ro.stature_wait_frames = options.stature_wait;
+  else if (uses_own_segmentation(input.meta, options.orient)) ro.stature_wait_frames = 0;
   ro.all_views = options.match_views == "all";
   if (ro.source.empty()) ro.source = input.path;
   OnlineReid reid(gallery, *input.matcher, ro);

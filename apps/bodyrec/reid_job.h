@@ -24,6 +24,7 @@ struct ReidCliOptions {
   std::string match_views = "all";
   std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
   OnlineReidOptions reid;
+  int stature_wait = -1;  // --stature-wait; -1: reid's default, 0 when the bodies come from our own depth segmentation
 };
 
 // --gallery, --matcher, --model, --no-images, --prune-unseen-for, --decide-after, --max-wait,

@@ -121,6 +121,7 @@ const char* reid_event_name(ReidEventKind kind) {
 void OnlineReidOptions::check() const {
   if (decide_after < 1) throw UsageError("reid: --decide-after must be at least 1");
   if (max_wait_frames < 1) throw UsageError("reid: --max-wait must be at least 1 frame");
+  if (stature_wait_frames < 0) throw UsageError("reid: --stature-wait must not be negative");
   if (max_scans < decide_after) throw UsageError("reid: max_scans must be at least --decide-after");
   if (sure_after < 1) throw UsageError("reid: --sure-after must be at least 1");
   if (!(min_quality >= 0 && min_quality <= 1)) throw UsageError("reid: --min-quality must be within 0..1");
@@ -375,7 +376,8 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
   if (n < options_.decide_after && !forced && !sure) return;
   // A body whose stature is not measured yet (head not in view) is not recognised as a user whose
   // stature is known before max_wait: two people who dress alike differ in stature more often than not.
-  const bool stature_pending = options_.stature_weight > 0 && !stature && user_statures().count(winner) && !forced;
+  const bool stature_pending = options_.stature_weight > 0 && !stature && user_statures().count(winner) && !forced &&
+                               track.frames < options_.stature_wait_frames;
   if (!stature_pending && (sure || 2 * most > n || (forced && most > 0 && most >= for_new))) {
     track.user = winner;
     track.last_verify = frame_;

@@ -16,7 +16,7 @@
 //    the larger side (when no scan voted at all, it waits up to three times as long, then enrols). Sooner,
 //    after `sure_after` scans, only a sure recognition: every scan clearly (new_gap above the threshold)
 //    for one user whose stature matches. A body whose stature is not measured yet is not recognised as a
-//    user with a known stature before max_wait. Users held by another track in a frame this one was in
+//    user with a known stature before stature_wait_frames (or max_wait). Users held by another track in a frame this one was in
 //    are never candidates: two bodies in one frame are two people (no merges).
 //  - assigned: a scan of a view the user lacks, or clearly better than the stored one, is checked against
 //    the user and stored (`view_added` or a silent replacement): it must match the user when the user has
@@ -61,6 +61,10 @@ struct OnlineReidOptions {
   // user whose stature matches the body's: then it is recognised at once. >= decide_after: never early.
   int sure_after = 2;
   int max_wait_frames = 30;     // then decide with whatever scans there are (at least one)
+  // A body whose stature is not measured yet is recognised as a user of known stature only after this
+  // many frames (max_wait_frames decides when sooner): the stature keeps apart people who dress alike.
+  // 0 = no wait (the stature still counts once measured).
+  int stature_wait_frames = 30;
   int max_scans = 12;           // a pending track keeps at most this many scans (the best ones)
   double min_quality = 0.35;    // scans below this PartialScan::quality are not used
   double min_view_confidence = 0.2;  // bodies whose view is less certain give no scan

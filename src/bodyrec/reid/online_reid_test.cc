@@ -255,6 +255,14 @@ TEST(OnlineReid, AClearReturnOfTheSameStatureIsRecognisedAfterTwoScans) {
   EXPECT_EQ(count(s.events, ReidEventKind::kRecognised), 1);
 }
 
+// Frames of body `track` (red over blue, front view, no stature) until it gets a user (at most 40); that
+// user in `user`.
+int frames_until_identified(Fixture& f, uint64_t track, int first, std::optional<UserId>& user) {
+  int frames = 0;
+  for (user.reset(); !user && frames < 40;) user = f.step({body(track, kRed, kBlue, View::F, first + frames++)}).identities[0].user;
+  return frames;
+}
+
 TEST(OnlineReid, ARecognitionWaitsForTheStatureUntilMaxWait) {
   Fixture f;
   for (int i = 0; i < 6; ++i) f.step({with_stature(body(1, kRed, kBlue, View::F, i), 1.75)});
@@ -266,10 +274,20 @@ TEST(OnlineReid, ARecognitionWaitsForTheStatureUntilMaxWait) {
   // or max_wait frames have passed.
   for (int i = 0; i < 40; ++i) f.step({});
   std::optional<UserId> user;
-  int frames = 0;
-  while (!user && frames < 40) user = f.step({body(6, kRed, kBlue, View::F, 400 + frames++)}).identities[0].user;
+  EXPECT_EQ(frames_until_identified(f, 6, 400, user), 30);
   EXPECT_EQ(user, 1);
-  EXPECT_EQ(frames, 30);
+}
+
+TEST(OnlineReid, WithoutAStatureWaitAReturnIsRecognisedAfterDecideAfterScans) {
+  OnlineReidOptions o;
+  o.stature_wait_frames = 0;
+  Fixture f(o);
+  for (int i = 0; i < 6; ++i) f.step({with_stature(body(1, kRed, kBlue, View::F, i), 1.75)});
+  for (int i = 0; i < 40; ++i) f.step({});
+  // Head out of view (no stature): no sure recognition after 2 scans, a majority after decide_after (4).
+  std::optional<UserId> user;
+  EXPECT_EQ(frames_until_identified(f, 5, 300, user), 4);
+  EXPECT_EQ(user, 1);
 }
 
 TEST(OnlineReid, ScansOfAnOlderDescriptorAreDescribedAgainOrRefused) {
@@ -342,6 +360,9 @@ TEST(OnlineReid, OptionsAreChecked) {
   EXPECT_THROW(o.check(), UsageError);
   o = {};
   o.sure_after = 0;
+  EXPECT_THROW(o.check(), UsageError);
+  o = {};
+  o.stature_wait_frames = -1;
   EXPECT_THROW(o.check(), UsageError);
   EXPECT_NO_THROW(OnlineReidOptions{}.check());
 }
