@@ -147,7 +147,7 @@ void BM_ReidOnlineFrame(benchmark::State& state) {
   state.counters["bodies_per_frame"] = static_cast<double>(p.bodies) / static_cast<double>(frames);
   state.counters["gallery_users"] = p.gallery->user_count();
 }
-BENCHMARK(BM_ReidOnlineFrame)->Arg(100)->Unit(benchmark::kMillisecond)->MinTime(5.0);
+BENCHMARK(BM_ReidOnlineFrame)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->MinTime(5.0);
 
 // Matching one scan against every stored scan of a gallery of range(0) users x 8 views (what a
 // pending body pays per frame on top of describing its scan).
