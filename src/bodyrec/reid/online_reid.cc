@@ -191,7 +191,7 @@ std::optional<OnlineReid::Probe> OnlineReid::describe(const ReidBody& body) cons
 // Per user, the best similarity over the scans of the probe's view and its complementary views; users
 // that have none of those are scored over all their views (a person seen from the front, now from the
 // side, must still be found).
-std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe) const {
+std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe, std::optional<UserId> only) const {
   std::vector<View> near = complementary_views(probe.view);
   near.push_back(probe.view);
   std::map<UserId, Score> best_near, best_any;
@@ -200,7 +200,7 @@ std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe) const
     const bool same_side = std::find(near.begin(), near.end(), v) != near.end();
     const bool is_near = options_.all_views || same_side;
     for (const GalleryEntry& e : gallery_.scans(v)) {
-      if (!comparable(e)) continue;
+      if (!comparable(e) || (only && e.user != *only)) continue;
       const double s = matcher_.similarity(probe.descriptor, appearance_of(e));
       for (auto* m : {is_near ? &best_near : nullptr, &best_any}) {
         if (!m) continue;
@@ -426,7 +426,9 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   double best_other = -std::numeric_limits<double>::infinity();
   // The track's own user by appearance alone (its stored stature may come from this very track's
   // earlier, rougher estimate); everyone else with the stature term.
-  for (const Score& s : with_stature(score_users(*probe), track.stature.estimate()))
+  // Everyone else matters only when the scan may be stored (below); a check alone scores the user only.
+  const std::optional<UserId> only = better ? std::nullopt : std::optional<UserId>(user);
+  for (const Score& s : with_stature(score_users(*probe, only), track.stature.estimate()))
     if (s.user == user) mine = s, mine->similarity -= s.stature, mine->stature = 0;
     else best_other = std::max(best_other, s.similarity);
   const double clear_miss = threshold_ - options_.new_gap * std::abs(threshold_);

@@ -196,8 +196,8 @@ class OnlineReid {
     int frames = 0, last_describe = -1000000, last_verify = 0, strikes = 0;
     double last_seen = 0;
   };
-  // Every user's best appearance similarity to the probe, best first (no exclusions).
-  std::vector<Score> score_users(const Probe& probe) const;
+  // Every user's (or only `only`'s) best appearance similarity to the probe, best first (no exclusions).
+  std::vector<Score> score_users(const Probe& probe, std::optional<UserId> only = std::nullopt) const;
   // The same, cached in the probe until the gallery changes.
   const std::vector<Score>& scores(Probe& probe);
   // Appearance scores with the stature term of a track whose stature is `stature`, best first.
