@@ -375,7 +375,8 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
                     stature_agrees[winner];
   if (n < options_.decide_after && !forced && !sure) return;
   // A body whose stature is not measured yet (head not in view) is not recognised as a user whose
-  // stature is known before max_wait: two people who dress alike differ in stature more often than not.
+  // stature is known before stature_wait_frames or max_wait: two people who dress alike differ in
+  // stature more often than not.
   const bool stature_pending = options_.stature_weight > 0 && !stature && user_statures().count(winner) && !forced &&
                                track.frames < options_.stature_wait_frames;
   if (!stature_pending && (sure || 2 * most > n || (forced && most > 0 && most >= for_new))) {
@@ -425,8 +426,8 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   std::optional<Score> mine;
   double best_other = -std::numeric_limits<double>::infinity();
   // The track's own user by appearance alone (its stored stature may come from this very track's
-  // earlier, rougher estimate); everyone else with the stature term.
-  // Everyone else matters only when the scan may be stored (below); a check alone scores the user only.
+  // earlier, rougher estimate); everyone else with the stature term, and only when the scan may be
+  // stored (below): a check alone scores the track's user only.
   const std::optional<UserId> only = better ? std::nullopt : std::optional<UserId>(user);
   for (const Score& s : with_stature(score_users(*probe, only), track.stature.estimate()))
     if (s.user == user) mine = s, mine->similarity -= s.stature, mine->stature = 0;

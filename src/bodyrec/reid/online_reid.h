@@ -16,8 +16,8 @@
 //    the larger side (when no scan voted at all, it waits up to three times as long, then enrols). Sooner,
 //    after `sure_after` scans, only a sure recognition: every scan clearly (new_gap above the threshold)
 //    for one user whose stature matches. A body whose stature is not measured yet is not recognised as a
-//    user with a known stature before stature_wait_frames (or max_wait). Users held by another track in a frame this one was in
-//    are never candidates: two bodies in one frame are two people (no merges).
+//    user with a known stature before stature_wait_frames (or max_wait). Users held by another track in
+//    a frame this one was in are never candidates: two bodies in one frame are two people (no merges).
 //  - assigned: a scan of a view the user lacks, or clearly better than the stored one, is checked against
 //    the user and stored (`view_added` or a silent replacement): it must match the user when the user has
 //    that view or a complementary one, and match nobody else when the view is new. Every few frames the
