@@ -10,6 +10,27 @@
 namespace bodyrec {
 namespace {
 
+// Copies of the descriptors, each compared with similarity().
+class CopyIndex : public DescriptorIndex {
+ public:
+  explicit CopyIndex(const AppearanceMatcher& matcher) : matcher_(matcher) {}
+  size_t size() const override { return rows_.size(); }
+  void push_back(DescriptorView d) override { rows_.push_back(d.to_vector()); }
+  void set(size_t row, DescriptorView d) override { rows_.at(row) = d.to_vector(); }
+  void swap_remove(size_t row) override {
+    rows_.at(row) = std::move(rows_.back());
+    rows_.pop_back();
+  }
+  void similarities(DescriptorView probe, std::vector<double>& out) const override {
+    out.resize(rows_.size());
+    for (size_t i = 0; i < rows_.size(); ++i) out[i] = matcher_.similarity(probe, rows_[i]);
+  }
+
+ private:
+  const AppearanceMatcher& matcher_;
+  std::vector<std::vector<float>> rows_;
+};
+
 // The feature format of the LOMO matchers: a model trained on other features is refused.
 // lomo2: LOMO of the colours as seen and after Retinex; lomo3: the same, each averaged with the mirror
 // image's feature.
@@ -67,7 +88,7 @@ class LomoMatcher : public AppearanceMatcher {
   std::vector<float> descriptor(const std::vector<float>& f) const override {
     return model_.empty() ? f : model_.embed(f);
   }
-  double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
+  double similarity(DescriptorView probe, DescriptorView gallery) const override {
     return -squared_distance(probe, gallery);
   }
   double threshold() const override { return model_.empty() ? -kLomoThreshold : -model_.threshold; }
@@ -97,11 +118,31 @@ class StripeMatcher : public AppearanceMatcher {
   std::vector<float> features(const PersonImage& image) const override { return stripe_features(image); }
   // Scans that share too few bands (one shows only the head, the other only the legs) cannot be the
   // same person as far as colour can tell: the largest distance.
-  double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
+  double similarity(DescriptorView probe, DescriptorView gallery) const override {
     const StripeOptions o;
     return -stripe_distance(probe, gallery, o).value_or(o.compared_bands);
   }
   double threshold() const override { return -kStripeThreshold; }
+  std::unique_ptr<DescriptorIndex> make_index() const override { return std::make_unique<Index>(); }
+
+ private:
+  class Index : public DescriptorIndex {
+   public:
+    size_t size() const override { return stripes_.size(); }
+    void push_back(DescriptorView d) override { stripes_.push_back(d); }
+    void set(size_t row, DescriptorView d) override { stripes_.set(row, d); }
+    void swap_remove(size_t row) override { stripes_.swap_remove(row); }
+    void similarities(DescriptorView probe, std::vector<double>& out) const override {
+      const StripeOptions o;
+      std::vector<std::optional<double>> distances;
+      stripes_.distances(probe, distances);
+      out.resize(distances.size());
+      for (size_t i = 0; i < out.size(); ++i) out[i] = -distances[i].value_or(o.compared_bands);
+    }
+
+   private:
+    StripeIndex stripes_;
+  };
 };
 
 class KazeMatcher : public AppearanceMatcher {
@@ -114,13 +155,15 @@ class KazeMatcher : public AppearanceMatcher {
   std::vector<float> features(const PersonImage& image) const override {
     return pack_descriptors(kaze_descriptors(image));
   }
-  double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const override {
-    return kaze_score(unpack_descriptors(probe), unpack_descriptors(gallery));
+  double similarity(DescriptorView probe, DescriptorView gallery) const override {
+    return kaze_score(unpack_descriptors(probe.to_vector()), unpack_descriptors(gallery.to_vector()));
   }
   double threshold() const override { return kKazeThreshold; }
 };
 
 }  // namespace
+
+std::unique_ptr<DescriptorIndex> AppearanceMatcher::make_index() const { return std::make_unique<CopyIndex>(*this); }
 
 void AppearanceMatcher::save_model(const std::string& path) const {
   throw UsageError("matcher " + name() + " has no learned model to write to " + path);

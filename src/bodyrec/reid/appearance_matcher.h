@@ -10,12 +10,27 @@
 #include <string>
 #include <vector>
 
+#include "bodyrec/reid/descriptor_view.h"
 #include "bodyrec/reid/person_image.h"
 #include "bodyrec/reid/xqda.h"
 
 namespace bodyrec {
 
 using TrainingSample = XqdaSample;  // features, identity, camera (0 probe side / 1 gallery side)
+
+// Stored descriptors of one matcher prepared for comparing many probes with them (one gallery view):
+// similarities() gives, per row, what the matcher's similarity(probe, row) gives, up to float rounding.
+// Rows are kept in the order they were added; swap_remove moves the last row into the freed place.
+class DescriptorIndex {
+ public:
+  virtual ~DescriptorIndex() = default;
+  virtual size_t size() const = 0;
+  virtual void push_back(DescriptorView descriptor) = 0;
+  virtual void set(size_t row, DescriptorView descriptor) = 0;
+  virtual void swap_remove(size_t row) = 0;
+  // out[i] = similarity(probe, row i); out is resized to size().
+  virtual void similarities(DescriptorView probe, std::vector<double>& out) const = 0;
+};
 
 class AppearanceMatcher {
  public:
@@ -33,8 +48,11 @@ class AppearanceMatcher {
   std::vector<float> describe(const PersonImage& image) const { return descriptor(features(image)); }
 
   // REQUIRES both from this matcher (same name and version).
-  virtual double similarity(const std::vector<float>& probe, const std::vector<float>& gallery) const = 0;
+  virtual double similarity(DescriptorView probe, DescriptorView gallery) const = 0;
   virtual double threshold() const = 0;
+  // An empty index for this matcher's descriptors. The default keeps copies and calls similarity() per
+  // row; "stripes" keeps only the non-zero bins, many times cheaper to search.
+  virtual std::unique_ptr<DescriptorIndex> make_index() const;
 
   // Writes the learned model (cv::FileStorage YAML) for make_matcher(name, path); throws UsageError
   // when this matcher has nothing learned to save.

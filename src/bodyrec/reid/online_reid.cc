@@ -13,17 +13,12 @@
 namespace bodyrec {
 namespace {
 
-std::vector<float> as_vector(const cv::Mat& m) {
-  CV_Assert(m.type() == CV_32F && m.isContinuous());
-  const float* p = m.ptr<float>();
-  return std::vector<float>(p, p + m.total());
-}
-
-// The matcher's descriptor of a stored scan (current layout: without the body measurements).
-std::vector<float> appearance_of(const GalleryEntry& e) {
-  std::vector<float> f = as_vector(e.features);
-  f.resize(f.size() >= kBodyFeatures ? f.size() - kBodyFeatures : 0);
-  return f;
+// The matcher's descriptor of a stored scan (current layout: without the body measurements), where the
+// gallery's cache holds it.
+DescriptorView appearance_of(const GalleryEntry& e) {
+  CV_Assert(e.features.type() == CV_32F && e.features.isContinuous());
+  const size_t n = e.features.total();
+  return {e.features.ptr<float>(), n >= kBodyFeatures ? n - kBodyFeatures : 0};
 }
 
 // The stature stored with a scan, if any.
@@ -147,6 +142,14 @@ OnlineReid::OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, Onlin
   debug_ = std::getenv("BODYREC_REID_DEBUG") != nullptr;
   threshold_ = std::isnan(options_.threshold) ? matcher_.threshold() : options_.threshold;
   redescribe_old_scans(gallery_, matcher_);
+  index_ = std::make_unique<GalleryIndex>(
+      gallery_, matcher_, [this](const GalleryEntry& e) { return comparable(e); }, appearance_of);
+}
+
+void OnlineReid::changed(std::optional<UserId> user) {
+  ++gallery_version_;
+  if (user) index_->update(*user);
+  else index_->reload();
 }
 
 bool OnlineReid::comparable(const GalleryEntry& e) const {
@@ -194,31 +197,35 @@ std::optional<OnlineReid::Probe> OnlineReid::describe(const ReidBody& body) cons
 std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe, std::optional<UserId> only) const {
   std::vector<View> near = complementary_views(probe.view);
   near.push_back(probe.view);
-  std::map<UserId, Score> best_near, best_any;
-  std::map<UserId, double> best_side;  // over the probe's own and complementary views only
+  struct Best {
+    std::optional<Score> near, any;
+    std::optional<double> side;  // over the probe's own and complementary views only
+  };
+  // By the index's user slot (`only`: slot 0).
+  std::vector<Best> best(only ? 1 : index_->slot_count());
+  std::vector<double> sims;
   for (View v : kAllViews) {
     const bool same_side = std::find(near.begin(), near.end(), v) != near.end();
     const bool is_near = options_.all_views || same_side;
-    for (const GalleryEntry& e : gallery_.scans(v)) {
-      if (!comparable(e) || (only && e.user != *only)) continue;
-      const double s = matcher_.similarity(probe.descriptor, appearance_of(e));
-      for (auto* m : {is_near ? &best_near : nullptr, &best_any}) {
-        if (!m) continue;
-        auto it = m->find(e.user);
-        if (it == m->end() || s > it->second.similarity) (*m)[e.user] = Score{e.user, s, 0, v, m == &best_near, std::nullopt};
-      }
-      if (same_side) {
-        const auto it = best_side.find(e.user);
-        if (it == best_side.end() || s > it->second) best_side[e.user] = s;
-      }
+    const auto consider = [&](Best& b, UserId user, double s) {
+      if (is_near && (!b.near || s > b.near->similarity)) b.near = Score{user, s, 0, v, true, std::nullopt};
+      if (!b.any || s > b.any->similarity) b.any = Score{user, s, 0, v, false, std::nullopt};
+      if (same_side && (!b.side || s > *b.side)) b.side = s;
+    };
+    if (only) {
+      const GalleryEntry* e = gallery_.find(*only, v);
+      if (e && comparable(*e)) consider(best[0], *only, matcher_.similarity(probe.descriptor, appearance_of(*e)));
+      continue;
     }
+    index_->search(v, probe.descriptor, sims);
+    const std::vector<uint32_t>& slots = index_->slots(v);
+    for (size_t i = 0; i < sims.size(); ++i) consider(best[slots[i]], index_->user(slots[i]), sims[i]);
   }
   std::vector<Score> out;
-  for (const auto& [user, score] : best_any) {
-    const auto it = best_near.find(user);
-    out.push_back(it != best_near.end() ? it->second : score);
-    const auto side = best_side.find(user);
-    if (side != best_side.end()) out.back().same_side = side->second;
+  for (const Best& b : best) {
+    if (!b.any) continue;
+    out.push_back(b.near ? *b.near : *b.any);
+    out.back().same_side = b.side;
   }
   std::sort(out.begin(), out.end(), [](const Score& a, const Score& b) { return a.similarity > b.similarity; });
   return out;
@@ -303,12 +310,12 @@ void OnlineReid::enrol(uint64_t key, Track& track, std::vector<ReidEvent>& event
   for (const auto& [v, p] : best)
     if (!first || p->quality > first->quality) first = p;
   UserId user = 0;
-  ++gallery_version_;
   gallery_.transaction([&] {
     user = gallery_.enrol(gallery_scan(*first, track), "", static_cast<int64_t>(key), options_.source);
     for (const auto& [v, p] : best)
       if (p != first) gallery_.put_scan(user, gallery_scan(*p, track));
   });
+  changed(user);
   events.push_back({ReidEventKind::kEnrolled, user, key, first->view, std::nullopt});
   for (const auto& [v, p] : best)
     if (p != first) {
@@ -392,8 +399,9 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     for (size_t i = 0; i < voted.size(); ++i) voted[i] = voted_for[i] == winner;
     for (const auto& [v, p] : best_per_view(track.probes, voted)) {
       if (!improves(winner, v, p->quality)) continue;
-      ++gallery_version_;
-      if (gallery_.put_scan(winner, gallery_scan(*p, track)) == PutResult::kInserted) {
+      const PutResult put = gallery_.put_scan(winner, gallery_scan(*p, track));
+      changed(winner);
+      if (put == PutResult::kInserted) {
         events.push_back({ReidEventKind::kViewAdded, winner, key, v, std::nullopt});
         log(events.back());
       }
@@ -469,8 +477,9 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   if (!better || track.strikes > 0 || !mine) return;
   const bool ok = mine->near ? mine->similarity > threshold_ : best_other <= threshold_ && mine->similarity > clear_miss;
   if (!ok) return;
-  ++gallery_version_;
-  if (gallery_.put_scan(user, gallery_scan(*probe, track)) == PutResult::kInserted) {
+  const PutResult put = gallery_.put_scan(user, gallery_scan(*probe, track));
+  changed(user);
+  if (put == PutResult::kInserted) {
     events.push_back({ReidEventKind::kViewAdded, user, key, view, std::nullopt});
     log(events.back());
   }
@@ -504,7 +513,7 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
   ++frame_;
   now_ = time_s;
   ReidStep out;
-  if (gallery_.refresh()) ++gallery_version_;
+  if (gallery_.refresh()) changed(std::nullopt);
   for (const ReidBody& b : bodies) {
     Track& t = tracks_[b.track];
     t.last_seen = time_s;

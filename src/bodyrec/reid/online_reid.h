@@ -41,6 +41,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -50,6 +51,7 @@
 
 #include "bodyrec/reid/appearance_matcher.h"
 #include "bodyrec/reid/body_measures.h"
+#include "bodyrec/reid/gallery_index.h"
 #include "bodyrec/reid/partial_scan.h"
 #include "bodyrec/store/gallery.h"
 
@@ -217,6 +219,8 @@ class OnlineReid {
   std::vector<UserId> users_held_except(uint64_t key) const;
   void leave(uint64_t key, Track& track, std::vector<ReidEvent>& events);
   bool comparable(const GalleryEntry& entry) const;  // made by this matcher in the current layout
+  // The gallery changed: every cache is stale; the index takes `user`'s scans again (none: all of them).
+  void changed(std::optional<UserId> user);
   GalleryScan gallery_scan(const Probe& probe, const Track& track) const;
   void log(const ReidEvent& event);
 
@@ -229,6 +233,7 @@ class OnlineReid {
   std::map<uint64_t, Track> tracks_;
   int frame_ = 0;
   double now_ = 0;
+  std::unique_ptr<GalleryIndex> index_;  // this matcher's scans, searched by score_users
   int64_t gallery_version_ = 0;  // bumped by every gallery write and by refresh() loading others' writes
   std::map<UserId, double> user_statures_;
   int64_t statures_at_ = -1;     // gallery_version_ of user_statures_

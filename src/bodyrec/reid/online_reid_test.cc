@@ -179,11 +179,15 @@ TEST(OnlineReid, ATrackThatJumpsToSomeoneElseIsReleasedAndDecidedAgain) {
   // The sensor's track 4 now follows another person (an id swap after an occlusion).
   std::vector<ReidEvent> events;
   std::optional<UserId> now;
+  int released = -1;
   for (int i = 0; i < 40; ++i) {
     const ReidStep s = f.step({body(4, kGreen, kYellow, View::F, 10 + i)});
+    if (released < 0 && count(s.events, ReidEventKind::kLeft)) released = i;
     events.insert(events.end(), s.events.begin(), s.events.end());
     now = s.identities[0].user;
   }
+  // Checks every verify_every (10) frames from the enrolment (frame 3): the second failed one releases.
+  EXPECT_EQ(released, 18);
   ASSERT_GE(events.size(), 2u);
   EXPECT_EQ(events[0].kind, ReidEventKind::kLeft);
   EXPECT_EQ(events[0].user, 1);

@@ -1,5 +1,6 @@
 #include "bodyrec/reid/stripe_features.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -68,27 +69,89 @@ std::vector<float> stripe_features(const PersonImage& image, const StripeOptions
   return f;
 }
 
-std::optional<double> stripe_distance(const std::vector<float>& a, const std::vector<float>& b, const StripeOptions& o) {
+std::optional<double> stripe_distance(DescriptorView a, DescriptorView b, const StripeOptions& o) {
   const size_t per_band = static_cast<size_t>(o.hue_bins * o.sat_bins * o.val_bins);
-  CV_Assert(a.size() == static_cast<size_t>(stripe_length(o)) && b.size() == a.size());
+  CV_Assert(a.size == static_cast<size_t>(stripe_length(o)) && b.size == a.size);
+  // In float, kLanes independent sums: the compiler vectorises this loop (it is most of what a gallery
+  // search costs) but would not reorder one running double sum.
+  constexpr size_t kLanes = 8;
   double d = 0;
   int common = 0;
   for (size_t s = 0; s < static_cast<size_t>(o.bands); ++s) {
-    const float* x = a.data() + s * per_band;
-    const float* y = b.data() + s * per_band;
-    double nx = 0, ny = 0, dd = 0;
-    for (size_t i = 0; i < per_band; ++i) {
-      nx += x[i] * x[i];
-      ny += y[i] * y[i];
-      const double t = x[i] - y[i];
-      dd += t * t;
+    const float* x = a.data + s * per_band;
+    const float* y = b.data + s * per_band;
+    float nx[kLanes] = {}, ny[kLanes] = {}, dd[kLanes] = {};
+    size_t i = 0;
+    for (; i + kLanes <= per_band; i += kLanes)
+      for (size_t l = 0; l < kLanes; ++l) {
+        nx[l] += x[i + l] * x[i + l];
+        ny[l] += y[i + l] * y[i + l];
+        const float t = x[i + l] - y[i + l];
+        dd[l] += t * t;
+      }
+    for (; i < per_band; ++i) {
+      nx[0] += x[i] * x[i];
+      ny[0] += y[i] * y[i];
+      dd[0] += (x[i] - y[i]) * (x[i] - y[i]);
     }
-    if (nx <= 0 || ny <= 0) continue;  // a band one of them does not show
-    d += dd;
+    float sx = 0, sy = 0, sd = 0;
+    for (size_t l = 0; l < kLanes; ++l) sx += nx[l], sy += ny[l], sd += dd[l];
+    if (sx <= 0 || sy <= 0) continue;  // a band one of them does not show
+    d += sd;
     ++common;
   }
   if (common < o.min_common) return std::nullopt;
   return d * o.compared_bands / common;
+}
+
+StripeIndex::StripeIndex(StripeOptions options) : options_(options) { options_.check(); }
+
+StripeIndex::Row StripeIndex::sparse(DescriptorView d) const {
+  CV_Assert(d.size == static_cast<size_t>(stripe_length(options_)));
+  const size_t per_band = static_cast<size_t>(options_.hue_bins * options_.sat_bins * options_.val_bins);
+  Row r;
+  r.norm.assign(static_cast<size_t>(options_.bands), 0.f);
+  r.start.reserve(static_cast<size_t>(options_.bands) + 1);
+  for (size_t b = 0; b < static_cast<size_t>(options_.bands); ++b) {
+    r.start.push_back(static_cast<uint32_t>(r.bins.size()));
+    for (size_t i = b * per_band; i < (b + 1) * per_band; ++i)
+      if (d.data[i] != 0) {
+        r.bins.push_back({static_cast<uint32_t>(i), d.data[i]});
+        r.norm[b] += d.data[i] * d.data[i];
+      }
+    if (r.norm[b] > 0) r.shown |= uint64_t{1} << b;
+  }
+  r.start.push_back(static_cast<uint32_t>(r.bins.size()));
+  return r;
+}
+
+void StripeIndex::push_back(DescriptorView d) { rows_.push_back(sparse(d)); }
+
+void StripeIndex::set(size_t row, DescriptorView d) { rows_.at(row) = sparse(d); }
+
+void StripeIndex::swap_remove(size_t row) {
+  rows_.at(row) = std::move(rows_.back());
+  rows_.pop_back();
+}
+
+void StripeIndex::distances(DescriptorView probe, std::vector<std::optional<double>>& out) const {
+  const Row p = sparse(probe);
+  out.assign(rows_.size(), std::nullopt);
+  for (size_t k = 0; k < rows_.size(); ++k) {
+    const Row& r = rows_[k];
+    const uint64_t common = p.shown & r.shown;
+    const int n = __builtin_popcountll(common);
+    if (n < options_.min_common) continue;
+    // |x - y|^2 = |x|^2 + |y|^2 - 2 x.y over each band both show; x.y over the row's non-zero bins.
+    double d = 0;
+    for (size_t b = 0; b < static_cast<size_t>(options_.bands); ++b) {
+      if (!(common >> b & 1)) continue;
+      float dot = 0;
+      for (uint32_t i = r.start[b]; i < r.start[b + 1]; ++i) dot += probe.data[r.bins[i].index] * r.bins[i].value;
+      d += std::max(0.f, p.norm[b] + r.norm[b] - 2 * dot);
+    }
+    out[k] = d * options_.compared_bands / n;
+  }
 }
 
 }  // namespace bodyrec

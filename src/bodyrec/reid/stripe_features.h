@@ -10,9 +10,11 @@
 // at the top. About 5.5 KB per scan: a gallery of 100 users x 8 views stays under 5 MB in memory.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
+#include "bodyrec/reid/descriptor_view.h"
 #include "bodyrec/reid/person_image.h"
 
 namespace bodyrec {
@@ -40,7 +42,37 @@ std::vector<float> stripe_features(const PersonImage& image, const StripeOptions
 // Sum of the squared Hellinger distances of the bands both descriptors show, times
 // compared_bands / (bands compared): 0 (alike) .. compared_bands (disjoint colours). nullopt when they
 // share fewer than min_common bands. REQUIRES both of stripe_length(options).
-std::optional<double> stripe_distance(const std::vector<float>& a, const std::vector<float>& b,
-                                      const StripeOptions& options = {});
+std::optional<double> stripe_distance(DescriptorView a, DescriptorView b, const StripeOptions& options = {});
+
+// Stripe descriptors kept for searching: per row only the bands it shows, their non-zero bins and
+// squared norms, so comparing a probe with a row costs its non-zero bins instead of every bin (a band's
+// histogram fills a few of its 128 bins). distances() gives stripe_distance(probe, row) up to float
+// rounding (identical descriptors: ~1e-7, not 0).
+class StripeIndex {
+ public:
+  explicit StripeIndex(StripeOptions options = {});
+  size_t size() const { return rows_.size(); }
+  // REQUIRES stripe_length(options) floats.
+  void push_back(DescriptorView descriptor);
+  void set(size_t row, DescriptorView descriptor);
+  void swap_remove(size_t row);  // the last row moves into `row`
+  // out[i] = stripe_distance(probe, row i); out resized to size().
+  void distances(DescriptorView probe, std::vector<std::optional<double>>& out) const;
+
+ private:
+  struct Bin {
+    uint32_t index;  // within the descriptor
+    float value;
+  };
+  struct Row {
+    uint64_t shown = 0;          // bit b: band b has pixels
+    std::vector<float> norm;     // per band: squared norm (0 when not shown)
+    std::vector<uint32_t> start; // per band: its first bin in `bins` (bands + 1 entries)
+    std::vector<Bin> bins;
+  };
+  Row sparse(DescriptorView descriptor) const;
+  StripeOptions options_;
+  std::vector<Row> rows_;
+};
 
 }  // namespace bodyrec

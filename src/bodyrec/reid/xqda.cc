@@ -61,11 +61,11 @@ void XqdaOptions::check() const {
   if (max_dims < 0) throw UsageError("XQDA: max_dims must be >= 0");
 }
 
-double squared_distance(const std::vector<float>& a, const std::vector<float>& b) {
-  CV_Assert(a.size() == b.size());
+double squared_distance(DescriptorView a, DescriptorView b) {
+  CV_Assert(a.size == b.size);
   double s = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const double d = double(a[i]) - b[i];
+  for (size_t i = 0; i < a.size; ++i) {
+    const double d = double(a.data[i]) - b.data[i];
     s += d * d;
   }
   return s;

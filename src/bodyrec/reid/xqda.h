@@ -10,10 +10,12 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include "bodyrec/reid/descriptor_view.h"
+
 namespace bodyrec {
 
 struct XqdaOptions {
-  double regulariser = 1e-3;  // added to the diagonal of the same-person covariance (relative to its mean)
+  double regulariser = 1e-3;  // added to the diagonal of the same-person covariance (an absolute value)
   int max_dims = 0;           // keep at most this many directions (0 = every one with eigenvalue > 1)
   void check() const;
 };
@@ -73,6 +75,6 @@ XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, int sli
 XqdaModel train_xqda(const std::vector<XqdaSample>& samples, const XqdaOptions& options = {});
 
 // Squared Euclidean distance between two embeddings (REQUIRES equal lengths).
-double squared_distance(const std::vector<float>& a, const std::vector<float>& b);
+double squared_distance(DescriptorView a, DescriptorView b);
 
 }  // namespace bodyrec
