@@ -1,5 +1,6 @@
 #include "bodyrec/landmarks/body_shape.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -8,13 +9,14 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/landmarks/body_shape_impl.h"
+#include "bodyrec/landmarks/contour.h"
 
 namespace bodyrec {
 
 BodyShapeModel::BodyShapeModel() : impl_(std::make_unique<Impl>()) {}
 
-// A mask-net file is its magic bytes, the network, then the landmark count; anything else is read as a
-// dlib shape_predictor.
+// A mask-net file is its magic bytes, the network, the landmark count, then (files since 2026-12-02)
+// the landmarks' arc offsets; anything else is read as a dlib shape_predictor.
 BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read shape model " + path);
@@ -27,6 +29,15 @@ BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
     }
     if (impl_->landmarks < 3 || impl_->landmarks > 10000)
       throw InputError(path + ": mask-net model has an invalid landmark count");
+    if (in.peek() == std::char_traits<char>::eof()) return;  // written before the arc offsets
+    try {
+      dlib::deserialize(impl_->arc_offsets, in);
+    } catch (const dlib::serialization_error&) {
+      throw InputError(path + ": truncated mask-net model (arc offsets)");
+    }
+    if (impl_->arc_offsets.size() != static_cast<size_t>(impl_->landmarks) ||
+        !std::all_of(impl_->arc_offsets.begin(), impl_->arc_offsets.end(), [](double o) { return std::abs(o) < 0.5; }))
+      throw InputError(path + ": mask-net model has invalid arc offsets");
     return;
   }
   try {
@@ -65,7 +76,14 @@ cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
 }
 
 std::vector<cv::Point2d> BodyShapeModel::fit(const cv::Mat& image, const Box& box) const {
-  if (impl_->net) return impl_->net->fit(image, box, impl_->landmarks);
+  if (impl_->net) {
+    std::vector<cv::Point2d> outline = impl_->net->fit(image, box, impl_->landmarks);
+    if (impl_->arc_offsets.empty()) return outline;
+    // The outline's points are equally spaced; landmark k sits arc_offsets[k] of its length further on.
+    std::vector<double> at(outline.size());
+    for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + impl_->arc_offsets[k];
+    return points_at_arc(outline, at);
+  }
   CV_Assert(image.type() == CV_8UC1);
   const dlib::cv_image<unsigned char> view(image);
   const dlib::full_object_detection shape = impl_->predictor(view, to_dlib_rect(box));

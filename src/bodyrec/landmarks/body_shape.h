@@ -1,7 +1,8 @@
 // The body shape model (thesis Ch3): N contour landmarks of the person inside a box. Two kinds, told apart
 // by the model file: the thesis's dlib ensemble of regression trees (Kazemi & Sullivan 2014; grey image)
 // and bodyrec's per-pixel body mask network (mask_net.h; colour image), whose landmarks are the mask's
-// outline numbered like the training contours. Loading and fitting here; training in shape_training.h.
+// outline numbered like the training contours, each point then moved along it by the model's per-landmark
+// arc offset (measured on the training people). Loading and fitting here; training in shape_training.h.
 #pragma once
 
 #include <memory>

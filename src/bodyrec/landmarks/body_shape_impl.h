@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <dlib/image_processing/shape_predictor.h>
 #include <opencv2/core/mat.hpp>
@@ -16,6 +17,9 @@ struct BodyShapeModel::Impl {
   dlib::shape_predictor predictor;  // kind kTrees
   std::unique_ptr<BodyMaskNet> net;  // kind kMaskNet (when set)
   int landmarks = 0;
+  // Mask network: per landmark, where it lies along the fitted outline beyond its equal-arc-length place
+  // (a fraction of the outline's length, measured on the training people); empty = none (older files).
+  std::vector<double> arc_offsets;
 };
 
 inline dlib::rectangle to_dlib_rect(const Box& b) {
@@ -37,6 +41,9 @@ class ShapeModelAccess {
     model.impl_->net = std::make_unique<BodyMaskNet>(std::move(net));
     model.impl_->landmarks = landmarks;
     return model;
+  }
+  static void set_arc_offsets(BodyShapeModel& model, std::vector<double> offsets) {
+    model.impl_->arc_offsets = std::move(offsets);
   }
   static const BodyShapeModel::Impl& impl(const BodyShapeModel& model) { return *model.impl_; }
 };

@@ -37,18 +37,29 @@ double signed_area2(const std::vector<cv::Point2d>& polygon) {
   return sum;
 }
 
-std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed, int n) {
-  std::vector<cv::Point2d> out;
-  if (closed.empty() || n < 1) return out;
+namespace {
+
+// Arc length at the start of each segment of the closed polyline, and the total at the end.
+std::vector<double> cumulative_arc(const std::vector<cv::Point2d>& closed) {
   const size_t m = closed.size();
-  std::vector<double> cumulative(m + 1, 0.0);  // arc length at the start of each segment
-  for (size_t i = 0; i < m; ++i) cumulative[i + 1] = cumulative[i] + cv::norm(closed[(i + 1) % m] - closed[i]);
+  std::vector<double> c(m + 1, 0.0);
+  for (size_t i = 0; i < m; ++i) c[i + 1] = c[i] + cv::norm(closed[(i + 1) % m] - closed[i]);
+  return c;
+}
+
+}  // namespace
+
+std::vector<cv::Point2d> points_at_arc(const std::vector<cv::Point2d>& closed, const std::vector<double>& at) {
+  std::vector<cv::Point2d> out;
+  if (closed.empty()) return out;
+  const size_t m = closed.size();
+  const std::vector<double> cumulative = cumulative_arc(closed);
   const double total = cumulative[m];
-  out.reserve(static_cast<size_t>(n));
-  size_t segment = 0;
-  for (int k = 0; k < n; ++k) {
-    const double s = total * k / n;
-    while (segment + 1 < m && cumulative[segment + 1] <= s) ++segment;
+  out.reserve(at.size());
+  for (double f : at) {
+    const double s = total * (f - std::floor(f));
+    const size_t segment = std::min(
+        m - 1, static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin()) - 1);
     const double length = cumulative[segment + 1] - cumulative[segment];
     const double t = length > 0 ? (s - cumulative[segment]) / length : 0.0;
     const cv::Point2d& a = closed[segment];
@@ -56,6 +67,12 @@ std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed,
     out.push_back(a + t * (b - a));
   }
   return out;
+}
+
+std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed, int n) {
+  std::vector<double> at(static_cast<size_t>(std::max(n, 0)));
+  for (int k = 0; k < n; ++k) at[static_cast<size_t>(k)] = static_cast<double>(k) / n;
+  return points_at_arc(closed, at);
 }
 
 BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options) {
@@ -112,17 +129,25 @@ std::vector<cv::Point2d> mirror_contour(const std::vector<cv::Point2d>& points, 
   return out;
 }
 
-double distance_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon) {
-  double best = std::numeric_limits<double>::infinity();
+PolylineProjection project_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon) {
+  PolylineProjection best{std::numeric_limits<double>::infinity(), 0.0};
+  const std::vector<double> cumulative = cumulative_arc(polygon);
   for (size_t i = 0; i < polygon.size(); ++i) {
     const cv::Point2d& a = polygon[i];
     const cv::Point2d& b = polygon[(i + 1) % polygon.size()];
     const cv::Point2d ab = b - a;
     const double len2 = ab.dot(ab);
     const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    best = std::min(best, cv::norm(p - (a + t * ab)));
+    const double d = cv::norm(p - (a + t * ab));
+    if (d < best.distance) best = {d, cumulative[i] + t * std::sqrt(len2)};
   }
+  const double total = polygon.empty() ? 0.0 : cumulative.back();
+  best.arc = total > 0 ? best.arc / total : 0.0;
   return best;
+}
+
+double distance_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon) {
+  return project_to_closed_polyline(p, polygon).distance;
 }
 
 }  // namespace bodyrec

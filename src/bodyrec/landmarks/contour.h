@@ -38,6 +38,10 @@ BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options
 // point), starting at closed[0]. REQUIRES: closed has >= 1 point, n >= 1.
 std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed, int n);
 
+// The points of `closed` (closing back to closed[0]) at the given fractions of its length from
+// closed[0], each taken modulo 1 (-0.1 is 0.9). Empty when closed is.
+std::vector<cv::Point2d> points_at_arc(const std::vector<cv::Point2d>& closed, const std::vector<double>& at);
+
 // Twice the signed area (shoelace) in image coordinates (y down): > 0 when clockwise on screen.
 double signed_area2(const std::vector<cv::Point2d>& polygon);
 
@@ -45,6 +49,14 @@ double signed_area2(const std::vector<cv::Point2d>& polygon);
 // point 0 stays the mirror of point 0 (the head top) and the order is reversed so that it stays clockwise.
 // mirror_contour(mirror_contour(p, w), w) == p.
 std::vector<cv::Point2d> mirror_contour(const std::vector<cv::Point2d>& points, int image_width);
+
+// The nearest point to `p` on the closed polyline `polygon` (any of its segments): its distance, and
+// where it lies as a fraction of the length from polygon[0] (0..1).
+struct PolylineProjection {
+  double distance = 0;
+  double arc = 0;
+};
+PolylineProjection project_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon);
 
 // Distance from `p` to the closed polyline `polygon` (nearest point on any of its segments).
 double distance_to_closed_polyline(const cv::Point2d& p, const std::vector<cv::Point2d>& polygon);

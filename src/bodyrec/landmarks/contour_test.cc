@@ -127,5 +127,27 @@ TEST(Contour, ResampleAndDistances) {
   EXPECT_DOUBLE_EQ(signed_area2(square), 200.0);
 }
 
+TEST(Contour, PointsAtArcAndProjections) {
+  const std::vector<cv::Point2d> square = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};  // length 40
+  const auto p = points_at_arc(square, {0.0, 0.125, 0.5, 0.9, -0.1, 1.25});
+  ASSERT_EQ(p.size(), 6u);
+  EXPECT_EQ(p[0], cv::Point2d(0, 0));
+  EXPECT_EQ(p[1], cv::Point2d(5, 0));
+  EXPECT_EQ(p[2], cv::Point2d(10, 10));
+  EXPECT_NEAR(p[3].x, 0, 1e-12);
+  EXPECT_NEAR(p[3].y, 4, 1e-12);  // 36 of 40: on the closing side, 4 above the start
+  EXPECT_NEAR(cv::norm(p[4] - p[3]), 0, 1e-12);  // -0.1 is 0.9
+  EXPECT_EQ(p[5], cv::Point2d(10, 0));  // 1.25 is 0.25
+  EXPECT_TRUE(points_at_arc({}, {0.5}).empty());
+  const PolylineProjection a = project_to_closed_polyline({5, 3}, square);
+  EXPECT_DOUBLE_EQ(a.distance, 3.0);
+  EXPECT_DOUBLE_EQ(a.arc, 0.125);
+  const PolylineProjection b = project_to_closed_polyline({-2, 6}, square);  // beside the closing side
+  EXPECT_DOUBLE_EQ(b.distance, 2.0);
+  EXPECT_DOUBLE_EQ(b.arc, 0.85);
+  // resample_closed is points_at_arc at k / n.
+  EXPECT_EQ(resample_closed(square, 8), points_at_arc(square, {0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875}));
+}
+
 }  // namespace
 }  // namespace bodyrec

@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/landmarks/body_shape.h"
+#include "bodyrec/landmarks/body_shape_impl.h"
 #include "bodyrec/landmarks/contour.h"
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "bodyrec/landmarks/shape_training.h"
@@ -135,20 +136,54 @@ TEST_F(TrainedMaskNet, SavedModelLoadsAndFitsTheSame) {
   EXPECT_EQ(loaded.prepare(gray).type(), CV_8UC3);
 }
 
+TEST_F(TrainedMaskNet, ArcOffsetsFromTrainingMoveThePointsAlongTheOutline) {
+  const auto& offsets = ShapeModelAccess::impl(*model_).arc_offsets;
+  ASSERT_EQ(offsets.size(), 60u);
+  double largest = 0;
+  for (double o : offsets) largest = std::max(largest, std::abs(o));
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(largest, 0.05);  // drawn people: the fitted outline is numbered almost like the truth
+  // A file written before the offsets (none stored) loads and numbers the outline by arc length alone:
+  // the same outline, every point moved by its offset.
+  testing::TempDir dir;
+  const std::string path = (dir / "old.dat").string();
+  save_body_shape(*model_, path);
+  BodyShapeModel old(path);
+  ShapeModelAccess::set_arc_offsets(old, {});
+  save_body_shape(old, path);
+  const BodyShapeModel loaded(path);
+  EXPECT_TRUE(ShapeModelAccess::impl(loaded).arc_offsets.empty());
+  const auto& image = train_->images[2];
+  const auto plain = loaded.fit(loaded.prepare(image.image), image.people[0].box);
+  const auto moved = model_->fit(model_->prepare(image.image), image.people[0].box);
+  ASSERT_EQ(plain.size(), moved.size());
+  std::vector<double> at(plain.size());
+  for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + offsets[k];
+  const auto expected = points_at_arc(plain, at);
+  for (size_t k = 0; k < plain.size(); ++k) EXPECT_NEAR(cv::norm(moved[k] - expected[k]), 0.0, 1e-9) << k;
+}
+
 TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
   testing::TempDir dir;
   const std::string good = (dir / "good.dat").string();
   save_body_shape(*model_, good);
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // Truncated in the network, and cut just before the landmark count.
+  // Truncated in the network, and cut in the arc offsets at the end.
   testing::write_text(dir / "cut.dat", bytes.substr(0, bytes.size() / 2));
   const std::string cut = testing::input_error([&] { BodyShapeModel m((dir / "cut.dat").string()); });
   EXPECT_TRUE(testing::contains(cut, "cut.dat")) << cut;
   EXPECT_TRUE(testing::contains(cut, "truncated or corrupt")) << cut;
-  testing::write_text(dir / "nocount.dat", bytes.substr(0, bytes.size() - 1));
-  EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyShapeModel m((dir / "nocount.dat").string()); }),
-                                "nocount.dat"));
+  testing::write_text(dir / "nooffsets.dat", bytes.substr(0, bytes.size() - 1));
+  const std::string offsets = testing::input_error([&] { BodyShapeModel m((dir / "nooffsets.dat").string()); });
+  EXPECT_TRUE(testing::contains(offsets, "nooffsets.dat")) << offsets;
+  EXPECT_TRUE(testing::contains(offsets, "arc offsets")) << offsets;
+  // Offsets that do not fit the landmarks.
+  BodyShapeModel odd(good);
+  ShapeModelAccess::set_arc_offsets(odd, {0.0, 0.1, 0.2});
+  save_body_shape(odd, (dir / "odd.dat").string());
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyShapeModel m((dir / "odd.dat").string()); }),
+                                "invalid arc offsets"));
   // A future format version.
   std::string future = bytes;
   future[16 + 1] = 9;  // dlib's int encoding: a size byte, then the value's bytes
