@@ -229,8 +229,12 @@ int run_orientation(const std::string& input, const OrientCliOptions& options,
       labels = seg.labels;
       const std::array<LabelFloor, kMaxBodies> floor = label_floors(seg.labels, f.depth, meta);
       std::vector<cv::Vec2d> where;
-      for (const auto& p : seg.people) where.push_back(floor[static_cast<size_t>(p.label)].floor);
-      const std::vector<int> ids = floor_tracker.update(f.index, where);
+      std::vector<bool> at_side;
+      for (const auto& p : seg.people) {
+        where.push_back(floor[static_cast<size_t>(p.label)].floor);
+        at_side.push_back(floor[static_cast<size_t>(p.label)].at_side);
+      }
+      const std::vector<int> ids = floor_tracker.update(f.index, where, at_side);
       for (size_t k = 0; k < seg.people.size(); ++k) {
         if (ids[k] < 0) continue;  // not followed for long enough yet (a flicker of the segmentation)
         const SegmentedPerson& p = seg.people[k];

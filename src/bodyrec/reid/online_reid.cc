@@ -446,16 +446,17 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
     // Only a comparison with the same or a complementary view can say "not this user": the other
     // side of a person may look different.
     const bool side = mine && mine->same_side;
-    if (debug_)
-      std::fprintf(stderr, "verify track %llu user %lld view %s quality %.2f: best %.3f (%s), same side %s\n",
-                   static_cast<unsigned long long>(key), static_cast<long long>(user), view_name(view), probe->quality,
-                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-",
-                   side ? std::to_string(*mine->same_side).c_str() : "none");
     // A body that still has its user's stature is more likely the same person turned or seen poorly
     // than another one: it takes twice as many failed checks in a row (unknown statures leave it to
     // the appearance).
     const auto now = track.stature.estimate(kRecentStatures);
     const auto them = user_statures().find(user);
+    if (debug_)
+      std::fprintf(stderr, "step %d verify track %llu user %lld view %s quality %.2f: best %.3f (%s), same side %s, stature %.3f (user %.3f)\n",
+                   frame_ - 1, static_cast<unsigned long long>(key), static_cast<long long>(user), view_name(view), probe->quality,
+                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-",
+                   side ? std::to_string(*mine->same_side).c_str() : "none", now ? *now : 0.0,
+                   them != user_statures().end() ? them->second : 0.0);
     const bool same_stature = options_.stature_weight > 0 && now && them != user_statures().end() &&
                               std::abs(*now - them->second) <= options_.stature_tolerance_m;
     if (side && probe->quality >= options_.verify_quality)

@@ -55,6 +55,34 @@ TEST(FloorTracker, SomeoneGoneLongerThanMaxAgeIsNewAndFlickersGetNoId) {
   EXPECT_NE(again, first);
 }
 
+TEST(FloorTracker, SomeoneWhoWalkedOutAtTheSideIsNotTheNextOneComingIn) {
+  FloorTracker tracker;  // walk_out_frames 2
+  // A walks right and out of view: touches the image's side on frames 8-9, then is gone.
+  int a = -1;
+  for (int f = 0; f < 10; ++f) a = tracker.update(f, {{1.0 + 0.05 * f, 3.0}}, {f >= 8})[0];
+  ASSERT_GE(a, 1);
+  // B comes in at the same side 0.1 s later, right where A's track is predicted: a new id.
+  int b = -1;
+  for (int f = 13; f < 20; ++f) b = tracker.update(f, {{1.45 - 0.05 * (f - 13), 3.0}}, {f < 15})[0];
+  EXPECT_GE(b, 1);
+  EXPECT_NE(b, a);
+  // Without the rule (walk_out_frames 0) the box tracker hands A's track to B.
+  FloorTrackerOptions keep;
+  keep.walk_out_frames = 0;
+  FloorTracker plain(keep);
+  int a0 = -1, b0 = -1;
+  for (int f = 0; f < 10; ++f) a0 = plain.update(f, {{1.0 + 0.05 * f, 3.0}}, {f >= 8})[0];
+  for (int f = 13; f < 20; ++f) b0 = plain.update(f, {{1.45 - 0.05 * (f - 13), 3.0}}, {f < 15})[0];
+  EXPECT_EQ(b0, a0);
+  // C at the side whose segment drops out for one frame only keeps its id.
+  FloorTracker other;
+  int c = -1;
+  for (int f = 0; f < 6; ++f) c = other.update(f, {{1.5, 3.0}}, {true})[0];
+  EXPECT_EQ(other.update(7, {{1.5, 3.0}}, {true})[0], c);
+  // ... and a person away from the side, hidden for longer, keeps theirs (PeoplePassing... above).
+  EXPECT_THROW(other.update(8, {{1.5, 3.0}}, {true, false}), UsageError);
+}
+
 TEST(FloorTracker, OptionsAreChecked) {
   FloorTrackerOptions o;
   o.footprint_m = 0;
