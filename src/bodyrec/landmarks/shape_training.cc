@@ -80,10 +80,6 @@ std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDatas
   return sum;
 }
 
-}  // namespace
-
-namespace {
-
 BodyShapeModel train_trees(const LandmarkDataset& data, const ShapeTrainOptions& options) {
   dlib::array<dlib::array2d<unsigned char>> images;
   std::vector<std::vector<dlib::full_object_detection>> shapes;

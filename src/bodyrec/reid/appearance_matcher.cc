@@ -116,16 +116,16 @@ class StripeMatcher : public AppearanceMatcher {
            "similarity = -distance, same person above -" + std::to_string(kStripeThreshold).substr(0, 4);
   }
   std::vector<float> features(const PersonImage& image) const override { return stripe_features(image); }
-  // Scans that share too few bands (one shows only the head, the other only the legs) cannot be the
-  // same person as far as colour can tell: the largest distance.
   double similarity(DescriptorView probe, DescriptorView gallery) const override {
-    const StripeOptions o;
-    return -stripe_distance(probe, gallery, o).value_or(o.compared_bands);
+    return similarity_of(stripe_distance(probe, gallery));
   }
   double threshold() const override { return -kStripeThreshold; }
   std::unique_ptr<DescriptorIndex> make_index() const override { return std::make_unique<Index>(); }
 
  private:
+  // Scans that share too few bands (one shows only the head, the other only the legs) cannot be the
+  // same person as far as colour can tell: the largest distance.
+  static double similarity_of(std::optional<double> distance) { return -distance.value_or(StripeOptions().compared_bands); }
   class Index : public DescriptorIndex {
    public:
     size_t size() const override { return stripes_.size(); }
@@ -133,11 +133,10 @@ class StripeMatcher : public AppearanceMatcher {
     void set(size_t row, DescriptorView d) override { stripes_.set(row, d); }
     void swap_remove(size_t row) override { stripes_.swap_remove(row); }
     void similarities(DescriptorView probe, std::vector<double>& out) const override {
-      const StripeOptions o;
       std::vector<std::optional<double>> distances;
       stripes_.distances(probe, distances);
       out.resize(distances.size());
-      for (size_t i = 0; i < out.size(); ++i) out[i] = -distances[i].value_or(o.compared_bands);
+      for (size_t i = 0; i < out.size(); ++i) out[i] = similarity_of(distances[i]);
     }
 
    private:

@@ -16,8 +16,11 @@ void GalleryIndex::reload() {
     ViewRows& view = views_[static_cast<int>(v)];
     view.rows = matcher_.make_index();
     view.slots.clear();
-    for (const GalleryEntry& e : gallery_.scans(v))
-      if (accept_(e)) put(view, slot_of(e.user), &e);
+    for (const GalleryEntry& e : gallery_.scans(v))  // one scan per user and view: no row to look up
+      if (accept_(e)) {
+        view.rows->push_back(descriptor_(e));
+        view.slots.push_back(slot_of(e.user));
+      }
   }
 }
 

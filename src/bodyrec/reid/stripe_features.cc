@@ -9,6 +9,16 @@
 #include "bodyrec/core/error.h"
 
 namespace bodyrec {
+namespace {
+
+// The sum of the squared band distances over `common` bands both show, scaled to compared_bands;
+// nullopt below min_common (what stripe_distance and StripeIndex both return).
+std::optional<double> scaled(double sum, int common, const StripeOptions& o) {
+  if (common < o.min_common) return std::nullopt;
+  return sum * o.compared_bands / common;
+}
+
+}  // namespace
 
 void StripeOptions::check() const {
   if (bands < 1 || bands > 64) throw UsageError("stripe features: bands must be 1..64");
@@ -100,28 +110,27 @@ std::optional<double> stripe_distance(DescriptorView a, DescriptorView b, const 
     d += sd;
     ++common;
   }
-  if (common < o.min_common) return std::nullopt;
-  return d * o.compared_bands / common;
+  return scaled(d, common, o);
 }
 
 StripeIndex::StripeIndex(StripeOptions options) : options_(options) { options_.check(); }
 
-StripeIndex::Row StripeIndex::sparse(DescriptorView d) const {
+StripeIndex::Row StripeIndex::sparse(DescriptorView d, bool keep_bins) const {
   CV_Assert(d.size == static_cast<size_t>(stripe_length(options_)));
   const size_t per_band = static_cast<size_t>(options_.hue_bins * options_.sat_bins * options_.val_bins);
   Row r;
   r.norm.assign(static_cast<size_t>(options_.bands), 0.f);
-  r.start.reserve(static_cast<size_t>(options_.bands) + 1);
+  if (keep_bins) r.start.reserve(static_cast<size_t>(options_.bands) + 1);
   for (size_t b = 0; b < static_cast<size_t>(options_.bands); ++b) {
-    r.start.push_back(static_cast<uint32_t>(r.bins.size()));
+    if (keep_bins) r.start.push_back(static_cast<uint32_t>(r.bins.size()));
     for (size_t i = b * per_band; i < (b + 1) * per_band; ++i)
       if (d.data[i] != 0) {
-        r.bins.push_back({static_cast<uint32_t>(i), d.data[i]});
+        if (keep_bins) r.bins.push_back({static_cast<uint32_t>(i), d.data[i]});
         r.norm[b] += d.data[i] * d.data[i];
       }
     if (r.norm[b] > 0) r.shown |= uint64_t{1} << b;
   }
-  r.start.push_back(static_cast<uint32_t>(r.bins.size()));
+  if (keep_bins) r.start.push_back(static_cast<uint32_t>(r.bins.size()));
   return r;
 }
 
@@ -135,13 +144,13 @@ void StripeIndex::swap_remove(size_t row) {
 }
 
 void StripeIndex::distances(DescriptorView probe, std::vector<std::optional<double>>& out) const {
-  const Row p = sparse(probe);
+  const Row p = sparse(probe, false);  // its bands and norms; its bins are read where they lie
   out.assign(rows_.size(), std::nullopt);
   for (size_t k = 0; k < rows_.size(); ++k) {
     const Row& r = rows_[k];
     const uint64_t common = p.shown & r.shown;
     const int n = __builtin_popcountll(common);
-    if (n < options_.min_common) continue;
+    if (n < options_.min_common) continue;  // (scaled() would say so too, after the work)
     // |x - y|^2 = |x|^2 + |y|^2 - 2 x.y over each band both show; x.y over the row's non-zero bins.
     double d = 0;
     for (size_t b = 0; b < static_cast<size_t>(options_.bands); ++b) {
@@ -150,7 +159,7 @@ void StripeIndex::distances(DescriptorView probe, std::vector<std::optional<doub
       for (uint32_t i = r.start[b]; i < r.start[b + 1]; ++i) dot += probe.data[r.bins[i].index] * r.bins[i].value;
       d += std::max(0.f, p.norm[b] + r.norm[b] - 2 * dot);
     }
-    out[k] = d * options_.compared_bands / n;
+    out[k] = scaled(d, n, options_);
   }
 }
 

@@ -70,7 +70,7 @@ class StripeIndex {
     std::vector<uint32_t> start; // per band: its first bin in `bins` (bands + 1 entries)
     std::vector<Bin> bins;
   };
-  Row sparse(DescriptorView descriptor) const;
+  Row sparse(DescriptorView descriptor, bool keep_bins = true) const;  // false: bands and norms only
   StripeOptions options_;
   std::vector<Row> rows_;
 };
