@@ -7,6 +7,7 @@
 // frame. The gallery holds 100 other users with 8 views each (random clothing) plus these 4 people.
 // Per body = orientation (face detector included) + partial scan (with heights above the floor, refitted
 // every 10 frames) and stature when wanted + describe + decide.
+#include <filesystem>
 #include <memory>
 #include <random>
 #include <string>
@@ -199,6 +200,17 @@ void BM_GallerySearchPairwise(benchmark::State& state) {
 }
 BENCHMARK(BM_GallerySearchPairwise)->Arg(10)->Arg(100)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
+// The gallery file with its WAL, in MB.
+double file_mb(const std::string& path) {
+  double bytes = 0;
+  for (const std::string& f : {path, path + "-wal"}) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(f, ec);
+    if (!ec) bytes += static_cast<double>(size);
+  }
+  return bytes / 1e6;
+}
+
 // Soak: 50 000 frames (833 return visits of the 4 people) through orientation, scans and online
 // re-identification on a 100-user gallery; resident memory after warm-up (frame 2000) and at the end,
 // and what the gallery holds at the end (bounded by users x views).
@@ -219,6 +231,10 @@ void BM_ReidSoak(benchmark::State& state) {
     state.counters["users"] = p.gallery->user_count();
     state.counters["scans"] = scans;
     state.counters["live_tracks"] = static_cast<double>(p.reid->live_tracks());
+    // The event history is capped per user (GalleryOptions::max_events_per_user), so the file is
+    // bounded too: events at most (users + 1) x the cap.
+    state.counters["events"] = static_cast<double>(p.gallery->events().size());
+    state.counters["file_mb"] = file_mb(p.gallery->path());
   }
 }
 BENCHMARK(BM_ReidSoak)->Arg(50000)->Iterations(1)->Unit(benchmark::kSecond);

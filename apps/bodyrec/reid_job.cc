@@ -31,6 +31,11 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery");
   sub.add_option("--prune-unseen-for", o.prune_unseen_for,
                  "Before the run, forget users unseen for this long (30d, 12h, 45m...)");
+  sub.add_option("--max-events-per-user", o.max_events_per_user,
+                 "The gallery keeps the newest this many events per user (enrolled, recognised, view added, left); "
+                 "older ones are erased, so the file stays bounded however often people come back. 0 = keep all")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   sub.add_option("--decide-after", o.reid.decide_after,
                  "Scans a new body collects before it is recognised or enrolled (a sure recognition, both of its "
                  "first 2 scans clearly for one user of the same stature, comes sooner)")
@@ -75,6 +80,7 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
   GalleryOptions g;
   g.create = true;
   g.store_images = !options.no_images;
+  g.max_events_per_user = options.max_events_per_user;
   auto gallery = std::make_unique<Gallery>(path, g);
   if (!options.prune_unseen_for.empty())
     gallery->prune_unseen(parse_retention(options.prune_unseen_for, "--prune-unseen-for"));

@@ -23,11 +23,12 @@ struct ReidCliOptions {
   bool no_images = false;
   std::string match_views = "all";
   std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
+  int max_events_per_user = GalleryOptions{}.max_events_per_user;  // event history cap; 0 = all
   OnlineReidOptions reid;
   int stature_wait = -1;  // --stature-wait; -1: reid's default, 0 when the bodies come from our own depth segmentation
 };
 
-// --gallery, --matcher, --model, --no-images, --prune-unseen-for, --decide-after, --max-wait,
+// --gallery, --matcher, --model, --no-images, --prune-unseen-for, --max-events-per-user, --decide-after, --max-wait,
 // --min-quality, --threshold, --left-after and the orientation/segmentation options.
 void add_reid_options(CLI::App& sub, ReidCliOptions& options, bool gallery_option = true);
 

@@ -35,7 +35,11 @@ struct GalleryOptions {
   // synchronous=FULL (fsync per commit: survives power loss). false: NORMAL (survives a killed process,
   // a power cut may lose the last commits); measured in bench/gallery_bench.cc.
   bool sync_full = true;
-  void check() const;           // UsageError for create together with read_only, negative timeout
+  // The event history keeps the newest this many events per user (and of the records without a user,
+  // `forgotten`/`pruned`); older ones are erased as new ones come, so a file's size is bounded by its
+  // users and views however often they come back. 0 keeps every event.
+  int max_events_per_user = 1000;
+  void check() const;  // UsageError for create together with read_only, a negative timeout or event cap
 };
 
 // The schema version this build writes (PRAGMA user_version). Older files are migrated on open.
@@ -65,7 +69,8 @@ class Gallery {
   // moves the user's last_seen forward to scan.time. REQUIRES: the user exists (else InputError),
   // scan.features non-empty and quality finite (else ProcessingError).
   PutResult put_scan(UserId user, const GalleryScan& scan);
-  // Appends an event (id assigned, returned); moves the user's last_seen forward to event.time.
+  // Appends an event (id assigned, returned); moves the user's last_seen forward to event.time; erases
+  // that user's oldest events beyond options().max_events_per_user.
   int64_t log_event(const Event& event);
   // add_user + put_scan + an `enrolled` event, in one transaction.
   UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},

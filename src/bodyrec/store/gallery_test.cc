@@ -212,6 +212,49 @@ TEST(Gallery, EnrolLogsEventsAndMovesLastSeen) {
   EXPECT_TRUE(contains(input_error([&] { g.log_event(seen); }), "unknown user 77"));
 }
 
+// A user who comes back every day must not grow the file without bound: only the newest events stay.
+TEST(Gallery, EventHistoryKeepsTheNewestEventsPerUser) {
+  TempDir dir;
+  GalleryOptions o = creating();
+  o.max_events_per_user = 5;
+  Gallery g((dir / "g.db").string(), o);
+  const UserId a = g.enrol(make_scan(View::F, 0.5, 1)), b = g.enrol(make_scan(View::B, 0.5, 2));
+  Event seen;
+  seen.kind = EventKind::kRecognised;
+  for (int i = 0; i < 20; ++i) {
+    seen.user = a;
+    seen.score = i;
+    seen.time = from_unix_ms(1000 + i);
+    g.log_event(seen);
+  }
+  const auto kept = g.events(a);
+  ASSERT_EQ(kept.size(), 5u);
+  for (size_t i = 0; i < kept.size(); ++i) EXPECT_EQ(kept[i].score, 15.0 + static_cast<double>(i));  // the newest
+  ASSERT_EQ(g.events(b).size(), 1u);  // another user's history is untouched
+  EXPECT_EQ(g.events(b)[0].kind, EventKind::kEnrolled);
+  // Records without a user (one per forget) are capped the same way.
+  for (int i = 0; i < 7; ++i) g.forget(g.enrol(make_scan(View::F, 0.5, 10 + i)));
+  int unowned = 0;
+  for (const auto& e : g.events())
+    if (!e.user) ++unowned;
+  EXPECT_EQ(unowned, 5);
+  o.max_events_per_user = -1;
+  EXPECT_TRUE(contains(testing::usage_error([&] { Gallery((dir / "h.db").string(), o); }), "events kept per user"));
+}
+
+TEST(Gallery, EventHistoryIsUnlimitedWithZero) {
+  TempDir dir;
+  GalleryOptions o = creating();
+  o.max_events_per_user = 0;
+  Gallery g((dir / "g.db").string(), o);
+  const UserId a = g.enrol(make_scan(View::F, 0.5, 1));
+  Event seen;
+  seen.user = a;
+  seen.kind = EventKind::kLeft;
+  for (int i = 0; i < 1200; ++i) g.log_event(seen);
+  EXPECT_EQ(g.events(a).size(), 1201u);
+}
+
 TEST(Gallery, ForgetErasesEverythingOfOneUserAndIdsAreNotReused) {
   TempDir dir;
   Gallery g((dir / "g.db").string(), creating());

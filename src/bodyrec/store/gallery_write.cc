@@ -120,6 +120,15 @@ int64_t Gallery::log_event(const Event& event) {
     s.bind(5, to_unix_ms(event.time)).bind(6, event.track).bind(7, event.source).run();
     id = db_->last_insert_rowid();
     if (event.user) touch(*event.user, event.time);
+    if (options_.max_events_per_user > 0) {
+      // The newest max_events_per_user of this user's events stay (events_user indexes (user, id));
+      // secure_delete zeroes the erased rows.
+      sql::Statement trim(*db_,
+                          "DELETE FROM events WHERE user IS ?1 AND id <= (SELECT id FROM events WHERE user IS ?1 "
+                          "ORDER BY id DESC LIMIT 1 OFFSET ?2)");
+      trim.bind(1, event.user ? std::optional<int64_t>(*event.user) : std::nullopt);
+      trim.bind(2, static_cast<int64_t>(options_.max_events_per_user)).run();
+    }
   });
   return id;
 }
