@@ -91,7 +91,9 @@ struct EvalReidStreamCommand {
                                           {"undecided", s.undecided},
                                           {"users", s.users},
                                           {"identities", s.identities},
-                                          {"ms_per_frame", per_frame}})
+                                          {"ms_per_frame", per_frame},
+                                          {"matcher", options.matcher},
+                                          {"match_views", match_views(options)}})
                               .dump()
                               .c_str());
   }

@@ -60,7 +60,9 @@ struct ReidCommand {
                                           {"left", counts["left"]},
                                           {"users", users},
                                           {"ms_per_frame", per_frame},
-                                          {"ms_per_body", per_body}})
+                                          {"ms_per_body", per_body},
+                                          {"matcher", options.matcher},
+                                          {"match_views", match_views(options)}})
                               .dump()
                               .c_str());
   }

@@ -65,7 +65,7 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
                  "all: compare a scan with every view of a user; near: same and complementary views only (thesis), "
                  "all views when the user has none of those")
       ->check(CLI::IsMember({"all", "near"}))
-      ->capture_default_str();
+      ->default_str("near with --matcher kaze (the thesis), else all");
   sub.add_option("--stature-weight", o.reid.stature_weight,
                  "Stature fused with appearance: a user whose stature (top of the depth points above the floor) "
                  "differs from the body's by more than 4 cm loses this share of |threshold| per further cm; 0 = "
@@ -74,6 +74,11 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   sub.add_option("--left-after", o.reid.left_after_s, "Seconds unseen after which a body has left")
       ->capture_default_str();
   add_orient_options(sub, o.orient);
+}
+
+std::string match_views(const ReidCliOptions& options) {
+  if (!options.match_views.empty()) return options.match_views;
+  return options.matcher == "kaze" ? "near" : "all";
 }
 
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path) {
@@ -103,7 +108,7 @@ int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gal
   // leaves bodies undecided for a second without keeping apart any look-alikes (docs/benchmarks.md).
   if (options.stature_wait >= 0) ro.stature_wait_frames = options.stature_wait;
   else if (uses_own_segmentation(input.meta, options.orient)) ro.stature_wait_frames = 0;
-  ro.all_views = options.match_views == "all";
+  ro.all_views = match_views(options) == "all";
   if (ro.source.empty()) ro.source = input.path;
   OnlineReid reid(gallery, *input.matcher, ro);
   const PartialScanExtractor scans(input.meta);

@@ -21,7 +21,7 @@ struct ReidCliOptions {
   GalleryCliOptions gallery;
   std::string matcher = "stripes", model;
   bool no_images = false;
-  std::string match_views = "all";
+  std::string match_views;  // "all" or "near"; empty: near for the thesis's kaze matcher, else all
   std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
   int max_events_per_user = GalleryOptions{}.max_events_per_user;  // event history cap; 0 = all
   OnlineReidOptions reid;
@@ -54,6 +54,10 @@ ReidInput open_reid_input(const std::string& input, const ReidCliOptions& option
 // gallery say; output already passed to `sink` stays valid.
 int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gallery,
              const std::function<void(const ReidFrame&)>& sink);
+
+// The --match-views in effect: as given, else "near" for the kaze matcher (the thesis compares a scan with
+// the same and the complementary view) and "all" for the others.
+std::string match_views(const ReidCliOptions& options);
 
 // Opens (or creates) the gallery the options name.
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);

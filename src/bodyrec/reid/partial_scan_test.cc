@@ -100,6 +100,28 @@ TEST_F(PartialScanOnOnePerson, MaskCoversTheTruePixelsAndQualityDropsWhenClipped
   EXPECT_LT(best_clipped, best_full);
 }
 
+// A blurred frame (motion blur, a defocused camera) gives the same body a lower quality, so a sharper
+// scan of the same view replaces it in the gallery (Gallery::put_scan keeps the higher quality).
+TEST_F(PartialScanOnOnePerson, BlurLowersSharpnessAndQuality) {
+  PartialScanExtractor scans(synth_->meta());
+  int compared = 0;
+  for (int i = 0; i < o_.frames; i += 3) {
+    RgbdFrame f = synth_->render(i);
+    if (f.bodies.empty() || f.truth->people[0].visible_fraction < 0.9) continue;
+    const BodyRef ref = BodyRef::of(f.bodies[0], f.body_index);
+    const auto sharp = scans.extract(f, ref, ViewEstimate{});
+    ASSERT_TRUE(sharp) << "frame " << i;
+    cv::GaussianBlur(f.color, f.color, cv::Size(0, 0), 2.5);
+    const auto blurred = scans.extract(f, ref, ViewEstimate{});
+    ASSERT_TRUE(blurred) << "frame " << i;
+    EXPECT_NEAR(blurred->completeness, sharp->completeness, 1e-9) << "frame " << i;  // the same pixels
+    EXPECT_LT(blurred->sharpness, 0.6 * sharp->sharpness) << "frame " << i;
+    EXPECT_LT(blurred->quality, sharp->quality) << "frame " << i;
+    ++compared;
+  }
+  EXPECT_GE(compared, 5);
+}
+
 // With the floor: every row of the crop knows its height above it, from the head's top to the feet.
 TEST_F(PartialScanOnOnePerson, RowHeightsRunFromTheHeadDownToTheFloor) {
   PartialScanExtractor scans(synth_->meta());

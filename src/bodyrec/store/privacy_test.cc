@@ -83,6 +83,28 @@ TEST(GalleryPrivacy, ReplacedAndPurgedScansLeaveNoBytes) {
   EXPECT_EQ(bytes.find(b.features), std::string::npos);
 }
 
+// Retention (prune --unseen-for, reid --prune-unseen-for) scrubs like forget.
+TEST(GalleryPrivacy, PrunedUsersLeaveNoBytes) {
+  TempDir dir;
+  const std::string path = (dir / "g.db").string();
+  Gallery g(path, [] { GalleryOptions o; o.create = true; return o; }());
+  GalleryScan stale = distinct_scan(5), recent = distinct_scan(6);
+  stale.time = from_unix_ms(1000);
+  recent.time = from_unix_ms(9000000);
+  const Patterns p = patterns_of(stale), q = patterns_of(recent);
+  g.enrol(stale);
+  g.enrol(recent);
+  ASSERT_NE(gallery_bytes(path).find(p.image), std::string::npos);
+  const EraseReport r = g.prune_unseen(std::chrono::seconds(3600), from_unix_ms(9000000));
+  EXPECT_EQ(r.users.size(), 1u);
+  EXPECT_TRUE(r.checkpointed);
+  const std::string bytes = gallery_bytes(path);
+  EXPECT_EQ(bytes.find(p.image), std::string::npos);
+  EXPECT_EQ(bytes.find(p.features), std::string::npos);
+  EXPECT_NE(bytes.find(q.image), std::string::npos);
+  EXPECT_EQ(g.user_count(), 1);
+}
+
 TEST(GalleryPrivacy, NoImagesStoresNoPixels) {
   TempDir dir;
   const std::string path = (dir / "g.db").string();
