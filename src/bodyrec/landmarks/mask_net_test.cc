@@ -69,7 +69,8 @@ TEST(MaskNet, OptionsAreChecked) {
   EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
 }
 
-// One network trained once for the tests below (about 10 s on one core).
+// One network trained once for the tests below (about 30 s in Release); tests/CMakeLists.txt runs the suite
+// in one process so that it is trained once.
 class TrainedMaskNet : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
