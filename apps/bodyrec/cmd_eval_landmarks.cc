@@ -16,11 +16,13 @@ namespace {
 struct EvalLandmarksCommand {
   std::string xml, shape, per_person;
   std::optional<double> mask_threshold;
+  std::vector<double> threshold_offsets;
   bool json = false;
 
   void run() const {
     BodyShapeModel model(shape);
     if (mask_threshold) model.set_mask_threshold(*mask_threshold);
+    if (!threshold_offsets.empty()) model.set_threshold_offsets(threshold_offsets);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
     std::vector<PersonLandmarkError> errors;
@@ -55,6 +57,10 @@ void add(CLI::App& eval) {
   sub->add_option("--mask-threshold", command->mask_threshold,
                   "mask-net models: score with this logit threshold instead of the model's (for tuning on a "
                   "held-out set)");
+  sub->add_option("--threshold-offsets", command->threshold_offsets,
+                  "mask-net models: average each landmark over the outlines at the threshold plus each of these "
+                  "logits (default -2,-1,0,1,2; 0 = one outline)")
+      ->delimiter(',');
   sub->add_option("--per-person", command->per_person,
                   "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "
                   "contour_px); `bodyrec report --eval FILE` draws their histogram");

@@ -93,8 +93,9 @@ void add(CLI::App& app) {
   sub->footer(
       "mask-net (default): a small U-Net labels each pixel of the box as body or not; the landmarks are that\n"
       "mask's outline, numbered like the training contours (point 0 at the head top, clockwise, equal arc\n"
-      "length), each then moved along it by its mean offset on the training people (stored in the model).\n"
-      "Its target masks are the filled landmark polygons. Threads come from the BLAS library\n"
+      "length), each then moved along it by its mean offset on the training people (stored in the model);\n"
+      "fitting averages each landmark over the outlines at five thresholds (eval landmarks\n"
+      "--threshold-offsets). Its target masks are the filled landmark polygons. Threads come from the BLAS library\n"
       "(OPENBLAS_NUM_THREADS). trees: the thesis's dlib regression trees; the thesis used --oversampling 500\n"
       "--nu 0.05 --tree-depth 2 and dlib's other defaults; tuned on Penn-Fudan: --oversampling 40\n"
       "--trees-per-level 100. Figures for both: docs/benchmarks.md.\n"

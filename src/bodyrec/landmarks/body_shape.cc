@@ -64,6 +64,14 @@ void BodyShapeModel::set_mask_threshold(double logit) {
   impl_->net->set_threshold(logit);
 }
 
+void BodyShapeModel::set_threshold_offsets(std::vector<double> offsets) {
+  if (!impl_->net) throw UsageError("--threshold-offsets applies to mask-net models only (this one has regression trees)");
+  if (offsets.empty()) throw UsageError("--threshold-offsets needs at least one value");
+  if (!std::all_of(offsets.begin(), offsets.end(), [](double o) { return std::isfinite(o); }))
+    throw UsageError("--threshold-offsets must be finite logits");
+  impl_->threshold_offsets = std::move(offsets);
+}
+
 cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
   const int wanted = impl_->net ? CV_8UC3 : CV_8UC1;
   if (image.type() == wanted) return image;
@@ -77,12 +85,17 @@ cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
 
 std::vector<cv::Point2d> BodyShapeModel::fit(const cv::Mat& image, const Box& box) const {
   if (impl_->net) {
-    std::vector<cv::Point2d> outline = impl_->net->fit(image, box, impl_->landmarks);
-    if (impl_->arc_offsets.empty()) return outline;
-    // The outline's points are equally spaced; landmark k sits arc_offsets[k] of its length further on.
-    std::vector<double> at(outline.size());
-    for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + impl_->arc_offsets[k];
-    return points_at_arc(outline, at);
+    const auto outlines = impl_->net->fit_at(image, box, impl_->landmarks, impl_->threshold_offsets);
+    // Each outline's points are equally spaced; landmark k sits arc_offsets[k] of its length further on.
+    std::vector<double> at(static_cast<size_t>(impl_->landmarks));
+    for (size_t k = 0; k < at.size(); ++k)
+      at[k] = static_cast<double>(k) / at.size() + (impl_->arc_offsets.empty() ? 0.0 : impl_->arc_offsets[k]);
+    std::vector<cv::Point2d> mean(at.size());
+    for (const auto& outline : outlines) {
+      const std::vector<cv::Point2d> points = impl_->arc_offsets.empty() ? outline : points_at_arc(outline, at);
+      for (size_t k = 0; k < mean.size(); ++k) mean[k] += points[k] / static_cast<double>(outlines.size());
+    }
+    return mean;
   }
   CV_Assert(image.type() == CV_8UC1);
   const dlib::cv_image<unsigned char> view(image);

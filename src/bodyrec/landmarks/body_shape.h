@@ -17,6 +17,9 @@ namespace bodyrec {
 
 class BodyMaskNet;
 
+// Chosen on the Penn-Fudan validation people (docs/benchmarks.md, "Several thresholds").
+inline const std::vector<double> kDefaultThresholdOffsets = {-2.0, -1.0, 0.0, 1.0, 2.0};
+
 class BodyShapeModel {
  public:
   enum class Kind { kTrees, kMaskNet };
@@ -39,6 +42,11 @@ class BodyShapeModel {
   // Mask network only: the logit above which a pixel is body (the model file's value until changed).
   // Throws UsageError for the trees or a value that is not finite.
   void set_mask_threshold(double logit);
+  // Mask network only: fit() averages each landmark over the outlines at the threshold plus each of these
+  // logit offsets (default kDefaultThresholdOffsets), hedging where the body's edge is uncertain (a gap
+  // between the legs) instead of betting on one outline; {0} = the single outline. Throws UsageError for
+  // the trees, an empty list or a value that is not finite.
+  void set_threshold_offsets(std::vector<double> offsets);
 
  private:
   friend class ShapeModelAccess;

@@ -20,6 +20,9 @@ struct BodyShapeModel::Impl {
   // Mask network: per landmark, where it lies along the fitted outline beyond its equal-arc-length place
   // (a fraction of the outline's length, measured on the training people); empty = none (older files).
   std::vector<double> arc_offsets;
+  // Mask network: fit() averages each landmark over the outlines at the model's threshold plus each of
+  // these logit offsets (BodyShapeModel::set_threshold_offsets).
+  std::vector<double> threshold_offsets = kDefaultThresholdOffsets;
 };
 
 inline dlib::rectangle to_dlib_rect(const Box& b) {

@@ -50,8 +50,13 @@ class BodyMaskNet {
   // The body mask over the box rounded to whole pixels (CV_8U, 255 = body): logits above the threshold,
   // resized to the box. When no pixel passes, the pixels within 1 of the highest logit (never empty).
   cv::Mat mask(const cv::Mat& bgr, const Box& box) const;
-  // `landmarks` points on the outline of mask()'s largest component, numbered as contour_from_mask.
+  // `landmarks` points on the outline of mask()'s largest component, numbered as contour_from_mask (traced
+  // at no more than twice the network's rows, then scaled to the box).
   std::vector<cv::Point2d> fit(const cv::Mat& bgr, const Box& box, int landmarks) const;
+  // The same outline at several thresholds (threshold() + each offset) from one network pass: one
+  // outline per offset, in order. REQUIRES: offsets not empty.
+  std::vector<std::vector<cv::Point2d>> fit_at(const cv::Mat& bgr, const Box& box, int landmarks,
+                                               const std::vector<double>& threshold_offsets) const;
 
   cv::Size input_size() const;
   double threshold() const;

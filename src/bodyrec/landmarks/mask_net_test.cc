@@ -81,6 +81,12 @@ class TrainedMaskNet : public ::testing::Test {
     delete model_;
     delete train_;
   }
+  // The shared model saved in `dir`: tests change loaded copies, never the shared one.
+  static std::string saved(const testing::TempDir& dir) {
+    const std::string path = (dir / "model.dat").string();
+    if (!std::filesystem::exists(path)) save_body_shape(*model_, path);
+    return path;
+  }
   static LandmarkDataset* train_;
   static BodyShapeModel* model_;
 };
@@ -147,21 +153,58 @@ TEST_F(TrainedMaskNet, ArcOffsetsFromTrainingMoveThePointsAlongTheOutline) {
   // A file written before the offsets (none stored) loads and numbers the outline by arc length alone:
   // the same outline, every point moved by its offset.
   testing::TempDir dir;
+  save_body_shape(*model_, saved(dir));
   const std::string path = (dir / "old.dat").string();
   save_body_shape(*model_, path);
   BodyShapeModel old(path);
   ShapeModelAccess::set_arc_offsets(old, {});
   save_body_shape(old, path);
-  const BodyShapeModel loaded(path);
+  BodyShapeModel loaded(path);
   EXPECT_TRUE(ShapeModelAccess::impl(loaded).arc_offsets.empty());
+  // One outline each (by default fit() averages several thresholds' outlines: the next test).
+  loaded.set_threshold_offsets({0.0});
+  BodyShapeModel single(saved(dir));
+  single.set_threshold_offsets({0.0});
   const auto& image = train_->images[2];
   const auto plain = loaded.fit(loaded.prepare(image.image), image.people[0].box);
-  const auto moved = model_->fit(model_->prepare(image.image), image.people[0].box);
+  const auto moved = single.fit(single.prepare(image.image), image.people[0].box);
   ASSERT_EQ(plain.size(), moved.size());
   std::vector<double> at(plain.size());
   for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + offsets[k];
   const auto expected = points_at_arc(plain, at);
   for (size_t k = 0; k < plain.size(); ++k) EXPECT_NEAR(cv::norm(moved[k] - expected[k]), 0.0, 1e-9) << k;
+}
+
+TEST_F(TrainedMaskNet, FitAveragesTheOutlinesAtEachThresholdOffset) {
+  EXPECT_EQ(ShapeModelAccess::impl(*model_).threshold_offsets, kDefaultThresholdOffsets);
+  testing::TempDir dir;
+  BodyShapeModel model(saved(dir));
+  const auto& image = train_->images[5];
+  const cv::Mat prepared = model.prepare(image.image);
+  const Box box = image.people[0].box;
+  const BodyMaskNet& net = *ShapeModelAccess::impl(model).net;
+  const std::vector<double>& offsets = ShapeModelAccess::impl(model).arc_offsets;
+  const auto outlines = net.fit_at(prepared, box, 60, {-1.0, 0.0, 2.5});
+  ASSERT_EQ(outlines.size(), 3u);
+  EXPECT_EQ(outlines[1], net.fit(prepared, box, 60));  // offset 0 = the model's own threshold
+  EXPECT_NE(outlines[0], outlines[2]);                // a lower threshold gives a wider body
+  // Each outline numbered with the arc offsets, then each landmark averaged over them.
+  std::vector<double> at(60);
+  for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + offsets[k];
+  model.set_threshold_offsets({-1.0, 0.0, 2.5});
+  const auto mean = model.fit(prepared, box);
+  ASSERT_EQ(mean.size(), 60u);
+  for (size_t k = 0; k < mean.size(); ++k) {
+    cv::Point2d expected(0, 0);
+    for (const auto& outline : outlines) expected += points_at_arc(outline, at)[k] / 3.0;
+    EXPECT_NEAR(cv::norm(mean[k] - expected), 0.0, 1e-9) << k;
+  }
+  // The averaged points still recover the drawn people (as the single outline does above).
+  model.set_threshold_offsets(kDefaultThresholdOffsets);
+  EXPECT_LT(evaluate_body_shape(model, drawn_people(8, 900), "drawn").mean_px, 4.0);
+  // Bad lists are usage errors naming the option.
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { model.set_threshold_offsets({}); }), "--threshold-offsets"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { model.set_threshold_offsets({0.0, NAN}); }), "finite"));
 }
 
 TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {

@@ -67,7 +67,9 @@ std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDatas
     const cv::Mat prepared = model.prepare(image.image);
     for (const auto& person : image.people) {
       if (person.ignore || person.landmarks.size() != n || person.box.area() <= 0) continue;
-      const std::vector<cv::Point2d> outline = model.fit(prepared, person.box);
+      // The outline at the model's own threshold, before any offsets (fit() would average several).
+      const std::vector<cv::Point2d> outline =
+          ShapeModelAccess::impl(model).net->fit(prepared, person.box, static_cast<int>(n));
       for (size_t k = 0; k < n; ++k) {
         double d = project_to_closed_polyline(person.landmarks[k], outline).arc - static_cast<double>(k) / n;
         sum[k] += d - std::round(d);  // the shorter way round
