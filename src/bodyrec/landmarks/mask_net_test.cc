@@ -153,7 +153,6 @@ TEST_F(TrainedMaskNet, ArcOffsetsFromTrainingMoveThePointsAlongTheOutline) {
   // A file written before the offsets (none stored) loads and numbers the outline by arc length alone:
   // the same outline, every point moved by its offset.
   testing::TempDir dir;
-  save_body_shape(*model_, saved(dir));
   const std::string path = (dir / "old.dat").string();
   save_body_shape(*model_, path);
   BodyShapeModel old(path);
