@@ -201,6 +201,9 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--threshold-offsets", "0,1"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--threshold-offsets applies to mask-net models only")) << r.err;
+  r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--no-mirror"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--no-mirror applies to mask-net models only")) << r.err;
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
                    path("v.xml").string()});
   EXPECT_EQ(r.exit_code, 2);

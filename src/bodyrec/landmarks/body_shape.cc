@@ -72,6 +72,11 @@ void BodyShapeModel::set_threshold_offsets(std::vector<double> offsets) {
   impl_->threshold_offsets = std::move(offsets);
 }
 
+void BodyShapeModel::set_mirror_average(bool on) {
+  if (!impl_->net) throw UsageError("--no-mirror applies to mask-net models only (this one has regression trees)");
+  impl_->net->set_mirror_average(on);
+}
+
 cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
   const int wanted = impl_->net ? CV_8UC3 : CV_8UC1;
   if (image.type() == wanted) return image;

@@ -47,6 +47,10 @@ class BodyShapeModel {
   // between the legs) instead of betting on one outline; {0} = the single outline. Throws UsageError for
   // the trees, an empty list or a value that is not finite.
   void set_threshold_offsets(std::vector<double> offsets);
+  // Mask network only: fit() thresholds the mean of the network's logits on the box and on its mirror
+  // image (true, the default) or the box's alone (BodyMaskNet::fitting_logits). Throws UsageError for
+  // the trees.
+  void set_mirror_average(bool on);
 
  private:
   friend class ShapeModelAccess;

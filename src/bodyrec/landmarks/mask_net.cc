@@ -115,20 +115,26 @@ class OpenCvUnet {
     net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   }
 
-  // `crop` BGR; returns the logits (rows x cols, CV_32F). dlib's input_rgb_image: RGB planes, (v - mean) / 256.
-  cv::Mat forward(const cv::Mat& crop) {
+  // `crops` BGR, all one size, run as one batch; returns each one's logits (rows x cols, CV_32F).
+  // dlib's input_rgb_image: RGB planes, (v - mean) / 256.
+  std::vector<cv::Mat> forward(const std::vector<cv::Mat>& crops) {
     static const float mean[3] = {122.782f, 117.001f, 104.298f};
-    const int shape[] = {1, 3, crop.rows, crop.cols};
+    const int rows = crops.front().rows, cols = crops.front().cols;
+    const int shape[] = {static_cast<int>(crops.size()), 3, rows, cols};
     cv::Mat blob(4, shape, CV_32F);
-    for (int ch = 0; ch < 3; ++ch)
-      for (int r = 0; r < crop.rows; ++r) {
-        float* out = blob.ptr<float>(0, ch, r);
-        const cv::Vec3b* in = crop.ptr<cv::Vec3b>(r);
-        for (int c = 0; c < crop.cols; ++c) out[c] = (in[c][2 - ch] - mean[ch]) / 256.f;
-      }
+    for (int n = 0; n < shape[0]; ++n)
+      for (int ch = 0; ch < 3; ++ch)
+        for (int r = 0; r < rows; ++r) {
+          float* out = blob.ptr<float>(n, ch, r);
+          const cv::Vec3b* in = crops[static_cast<size_t>(n)].ptr<cv::Vec3b>(r);
+          for (int c = 0; c < cols; ++c) out[c] = (in[c][2 - ch] - mean[ch]) / 256.f;
+        }
     net_.setInput(blob);
     const cv::Mat out = net_.forward();
-    return cv::Mat(crop.rows, crop.cols, CV_32F, const_cast<float*>(out.ptr<float>(0, 0))).clone();
+    std::vector<cv::Mat> logits;
+    for (int n = 0; n < shape[0]; ++n)
+      logits.push_back(cv::Mat(rows, cols, CV_32F, const_cast<float*>(out.ptr<float>(n, 0))).clone());
+    return logits;
   }
 
  private:
@@ -195,6 +201,7 @@ struct BodyMaskNet::Impl {
   std::unique_ptr<OpenCvUnet> runner;  // what runs (built from `net`; keeps buffers between calls)
   cv::Size input;
   double threshold = 0.5;
+  bool mirror_average = true;
   void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
 };
 
@@ -282,9 +289,24 @@ void BodyMaskNet::set_threshold(double logit) {
   impl_->threshold = logit;
 }
 
+void BodyMaskNet::set_mirror_average(bool on) { impl_->mirror_average = on; }
+bool BodyMaskNet::mirror_average() const { return impl_->mirror_average; }
+
 cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
   CV_Assert(bgr.type() == CV_8UC3);
-  return impl_->runner->forward(crop_box(bgr, box, impl_->input));
+  return impl_->runner->forward({crop_box(bgr, box, impl_->input)}).front();
+}
+
+cv::Mat BodyMaskNet::fitting_logits(const cv::Mat& bgr, const Box& box) const {
+  CV_Assert(bgr.type() == CV_8UC3);
+  const cv::Mat crop = crop_box(bgr, box, impl_->input);
+  if (!impl_->mirror_average) return impl_->runner->forward({crop}).front();
+  cv::Mat mirrored;
+  cv::flip(crop, mirrored, 1);
+  // One batch of two: cheaper than two passes of these small layers.
+  std::vector<cv::Mat> out = impl_->runner->forward({crop, mirrored});
+  cv::flip(out[1], out[1], 1);
+  return 0.5f * (out[0] + out[1]);
 }
 
 cv::Mat BodyMaskNet::reference_logits(const cv::Mat& bgr, const Box& box) const {
@@ -310,7 +332,7 @@ cv::Mat mask_above(const cv::Mat& up, double threshold) {
 cv::Mat BodyMaskNet::mask(const cv::Mat& bgr, const Box& box) const {
   const PixelBox b(box);
   cv::Mat up;
-  cv::resize(logits(bgr, box), up, cv::Size(b.width, b.height), 0, 0, cv::INTER_LINEAR);
+  cv::resize(fitting_logits(bgr, box), up, cv::Size(b.width, b.height), 0, 0, cv::INTER_LINEAR);
   return mask_above(up, impl_->threshold);
 }
 
@@ -334,7 +356,7 @@ std::vector<std::vector<cv::Point2d>> BodyMaskNet::fit_at(const cv::Mat& bgr, co
                       std::max(1, static_cast<int>(std::lround(b.height * scale))));
   const double sx = static_cast<double>(b.width) / size.width, sy = static_cast<double>(b.height) / size.height;
   cv::Mat up;
-  cv::resize(logits(bgr, box), up, size, 0, 0, cv::INTER_LINEAR);
+  cv::resize(fitting_logits(bgr, box), up, size, 0, 0, cv::INTER_LINEAR);
   std::vector<std::vector<cv::Point2d>> outlines;
   for (double offset : threshold_offsets) {
     BodyContour contour = contour_from_mask(mask_above(up, impl_->threshold + offset), options);

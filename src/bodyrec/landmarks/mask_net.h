@@ -43,12 +43,18 @@ class BodyMaskNet {
   static bool recognise(std::istream& in);
   void save(std::ostream& out) const;
 
-  // Per-pixel body logits of `box` in `bgr` (CV_8UC3): input_height x input_width, CV_32F.
+  // The network's per-pixel body logits of `box` in `bgr` (CV_8UC3): input_height x input_width, CV_32F.
   cv::Mat logits(const cv::Mat& bgr, const Box& box) const;
   // The same from dlib's own forward pass (slower): the check that the network OpenCV runs is dlib's.
   cv::Mat reference_logits(const cv::Mat& bgr, const Box& box) const;
-  // The body mask over the box rounded to whole pixels (CV_8U, 255 = body): logits above the threshold,
-  // resized to the box. When no pixel passes, the pixels within 1 of the highest logit (never empty).
+  // What mask() and fit() threshold: with mirror averaging (the default), the mean of logits() on the
+  // crop and, flipped back, on its mirror image (the network learnt both; their mean is steadier where
+  // it is unsure, e.g. between the legs); without, logits().
+  cv::Mat fitting_logits(const cv::Mat& bgr, const Box& box) const;
+  void set_mirror_average(bool on);
+  bool mirror_average() const;
+  // The body mask over the box rounded to whole pixels (CV_8U, 255 = body): fitting_logits() above the
+  // threshold, resized to the box. When no pixel passes, the pixels within 1 of the highest (never empty).
   cv::Mat mask(const cv::Mat& bgr, const Box& box) const;
   // `landmarks` points on the outline of mask()'s largest component, numbered as contour_from_mask (traced
   // at no more than twice the network's rows, then scaled to the box).

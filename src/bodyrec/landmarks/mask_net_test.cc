@@ -127,6 +127,43 @@ TEST_F(TrainedMaskNet, OpenCvRunsTheDlibNetwork) {
   }
 }
 
+TEST_F(TrainedMaskNet, FittingAveragesTheLogitsOfTheBoxAndItsMirrorImage) {
+  testing::TempDir dir;
+  BodyShapeModel model(saved(dir));
+  BodyMaskNet& net = *ShapeModelAccess::impl(model).net;
+  EXPECT_TRUE(net.mirror_average());  // the default
+  const auto& image = train_->images[4];
+  const Box box = image.people[0].box;
+  cv::Mat flipped;
+  cv::flip(image.image, flipped, 1);
+  const Box mirrored(image.image.cols - box.x - box.width, box.y, box.width, box.height);
+  cv::Mat back = net.logits(flipped, mirrored);
+  cv::flip(back, back, 1);
+  const cv::Mat expected = 0.5 * (net.logits(image.image, box) + back);
+  const cv::Mat averaged = net.fitting_logits(image.image, box);
+  double range = 0;
+  cv::minMaxLoc(cv::abs(expected), nullptr, &range);
+  EXPECT_GT(range, 1.0);
+  // One batch of two equals two passes (to rounding: the crop of the mirror image is resampled apart).
+  EXPECT_LT(cv::norm(averaged, expected, cv::NORM_INF), 1e-3 * range);
+  EXPECT_GT(cv::norm(averaged, net.logits(image.image, box), cv::NORM_INF), 1e-3 * range);
+  // A mirror-symmetric crop gives mirror-symmetric logits.
+  cv::Mat symmetric = image.image.clone();
+  const int half = symmetric.cols / 2;
+  cv::flip(symmetric(cv::Rect(0, 0, half, symmetric.rows)), symmetric(cv::Rect(symmetric.cols - half, 0, half, symmetric.rows)), 1);
+  const Box centred(symmetric.cols / 2.0 - 20, box.y, 40, box.height);
+  cv::Mat sym = net.fitting_logits(symmetric, centred), sym_flipped;
+  cv::flip(sym, sym_flipped, 1);
+  EXPECT_LT(cv::norm(sym, sym_flipped, cv::NORM_INF), 1e-3 * range);
+  // Off: the network's own logits, and another outline.
+  const cv::Mat prepared = model.prepare(image.image);
+  const auto with_mirror = net.fit(prepared, box, 60);
+  model.set_mirror_average(false);
+  EXPECT_FALSE(net.mirror_average());
+  EXPECT_EQ(cv::norm(net.fitting_logits(image.image, box), net.logits(image.image, box), cv::NORM_INF), 0.0);
+  EXPECT_NE(net.fit(prepared, box, 60), with_mirror);
+}
+
 TEST_F(TrainedMaskNet, SavedModelLoadsAndFitsTheSame) {
   testing::TempDir dir;
   const std::string path = (dir / "shape.dat").string();
