@@ -108,6 +108,10 @@ TEST_F(LandmarkCommands, TrainMaskNetThenLandmark) {
   ASSERT_EQ(e.exit_code, 0) << e.err;
   EXPECT_EQ(last_json_line(e.out)["persons"], 2);
   EXPECT_LT(last_json_line(e.out)["mean_px"].get<double>(), 40.0);  // 150 px people after 80 mini-batches
+  const RunResult alone = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                       path("net.dat").string(), "--no-mirror", "--json"});
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  EXPECT_EQ(last_json_line(alone.out)["persons"], 2);
   // The commands that read a shape model take either kind.
   const RunResult r = run_bodyrec({"landmark", path("set/images/P03.png").string(), "--shape", path("net.dat").string(),
                                    "--motion", "off", "-q"});

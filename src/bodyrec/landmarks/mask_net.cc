@@ -119,7 +119,9 @@ class OpenCvUnet {
   // dlib's input_rgb_image: RGB planes, (v - mean) / 256.
   std::vector<cv::Mat> forward(const std::vector<cv::Mat>& crops) {
     static const float mean[3] = {122.782f, 117.001f, 104.298f};
+    CV_Assert(!crops.empty());
     const int rows = crops.front().rows, cols = crops.front().cols;
+    for (const cv::Mat& crop : crops) CV_Assert(crop.type() == CV_8UC3 && crop.rows == rows && crop.cols == cols);
     const int shape[] = {static_cast<int>(crops.size()), 3, rows, cols};
     cv::Mat blob(4, shape, CV_32F);
     for (int n = 0; n < shape[0]; ++n)

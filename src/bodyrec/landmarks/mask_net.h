@@ -31,6 +31,7 @@ struct MaskNetTrainOptions {
   void check() const;              // throws UsageError naming the option
 };
 
+// Not thread-safe (the forward passes reuse the network's buffers): use one per thread.
 class BodyMaskNet {
  public:
   // Reads a model written by save(). Throws InputError naming `name` when the stream is not one.
@@ -51,6 +52,7 @@ class BodyMaskNet {
   // crop and, flipped back, on its mirror image (the network learnt both; their mean is steadier where
   // it is unsure, e.g. between the legs); without, logits().
   cv::Mat fitting_logits(const cv::Mat& bgr, const Box& box) const;
+  // A fitting option, not saved with the model: on after loading or training.
   void set_mirror_average(bool on);
   bool mirror_average() const;
   // The body mask over the box rounded to whole pixels (CV_8U, 255 = body): fitting_logits() above the
@@ -59,7 +61,7 @@ class BodyMaskNet {
   // `landmarks` points on the outline of mask()'s largest component, numbered as contour_from_mask (traced
   // at no more than twice the network's rows, then scaled to the box).
   std::vector<cv::Point2d> fit(const cv::Mat& bgr, const Box& box, int landmarks) const;
-  // The same outline at several thresholds (threshold() + each offset) from one network pass: one
+  // The same outline at several thresholds (threshold() + each offset) from one network batch: one
   // outline per offset, in order. REQUIRES: offsets not empty.
   std::vector<std::vector<cv::Point2d>> fit_at(const cv::Mat& bgr, const Box& box, int landmarks,
                                                const std::vector<double>& threshold_offsets) const;

@@ -149,9 +149,11 @@ TEST_F(TrainedMaskNet, FittingAveragesTheLogitsOfTheBoxAndItsMirrorImage) {
   EXPECT_GT(cv::norm(averaged, net.logits(image.image, box), cv::NORM_INF), 1e-3 * range);
   // A mirror-symmetric crop gives mirror-symmetric logits.
   cv::Mat symmetric = image.image.clone();
+  ASSERT_EQ(symmetric.cols % 2, 0);  // so that a 40 px box centred on it has whole-pixel sides
   const int half = symmetric.cols / 2;
-  cv::flip(symmetric(cv::Rect(0, 0, half, symmetric.rows)), symmetric(cv::Rect(symmetric.cols - half, 0, half, symmetric.rows)), 1);
-  const Box centred(symmetric.cols / 2.0 - 20, box.y, 40, box.height);
+  const cv::Rect left(0, 0, half, symmetric.rows), right(half, 0, half, symmetric.rows);
+  cv::flip(symmetric(left), symmetric(right), 1);
+  const Box centred(half - 20, box.y, 40, box.height);
   cv::Mat sym = net.fitting_logits(symmetric, centred), sym_flipped;
   cv::flip(sym, sym_flipped, 1);
   EXPECT_LT(cv::norm(sym, sym_flipped, cv::NORM_INF), 1e-3 * range);

@@ -67,7 +67,8 @@ std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDatas
     const cv::Mat prepared = model.prepare(image.image);
     for (const auto& person : image.people) {
       if (person.ignore || person.landmarks.size() != n || person.box.area() <= 0) continue;
-      // The outline at the model's own threshold, before any offsets (fit() would average several).
+      // The outline fitting starts from: the model's own threshold, mirror-averaged logits (the default of
+      // a trained network), before any offsets (fit() would average several thresholds).
       const std::vector<cv::Point2d> outline =
           ShapeModelAccess::impl(model).net->fit(prepared, person.box, static_cast<int>(n));
       for (size_t k = 0; k < n; ++k) {
