@@ -300,9 +300,9 @@ cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
 }
 
 cv::Mat BodyMaskNet::fitting_logits(const cv::Mat& bgr, const Box& box) const {
+  if (!impl_->mirror_average) return logits(bgr, box);
   CV_Assert(bgr.type() == CV_8UC3);
   const cv::Mat crop = crop_box(bgr, box, impl_->input);
-  if (!impl_->mirror_average) return impl_->runner->forward({crop}).front();
   cv::Mat mirrored;
   cv::flip(crop, mirrored, 1);
   // One batch of two: cheaper than two passes of these small layers.
@@ -318,24 +318,6 @@ cv::Mat BodyMaskNet::reference_logits(const cv::Mat& bgr, const Box& box) const 
   for (int r = 0; r < result.rows; ++r)
     for (int c = 0; c < result.cols; ++c) result.at<float>(r, c) = out(r, c);
   return result;
-}
-
-namespace {
-
-// Logits above `threshold`; when no pixel passes, the pixels within 1 of the highest (never empty).
-cv::Mat mask_above(const cv::Mat& up, double threshold) {
-  double highest = 0;
-  cv::minMaxLoc(up, nullptr, &highest);
-  return up > std::min(threshold, highest - 1.0);
-}
-
-}  // namespace
-
-cv::Mat BodyMaskNet::mask(const cv::Mat& bgr, const Box& box) const {
-  const PixelBox b(box);
-  cv::Mat up;
-  cv::resize(fitting_logits(bgr, box), up, cv::Size(b.width, b.height), 0, 0, cv::INTER_LINEAR);
-  return mask_above(up, impl_->threshold);
 }
 
 std::vector<cv::Point2d> BodyMaskNet::fit(const cv::Mat& bgr, const Box& box, int landmarks) const {
@@ -359,10 +341,14 @@ std::vector<std::vector<cv::Point2d>> BodyMaskNet::fit_at(const cv::Mat& bgr, co
   const double sx = static_cast<double>(b.width) / size.width, sy = static_cast<double>(b.height) / size.height;
   cv::Mat up;
   cv::resize(fitting_logits(bgr, box), up, size, 0, 0, cv::INTER_LINEAR);
+  double highest = 0;
+  cv::minMaxLoc(up, nullptr, &highest);
   std::vector<std::vector<cv::Point2d>> outlines;
   for (double offset : threshold_offsets) {
-    BodyContour contour = contour_from_mask(mask_above(up, impl_->threshold + offset), options);
-    CV_Assert(contour.status == ContourStatus::kOk);  // mask_above() is never empty
+    // When no pixel passes the threshold, the pixels within 1 of the highest: never an empty mask.
+    const cv::Mat mask = up > std::min(impl_->threshold + offset, highest - 1.0);
+    BodyContour contour = contour_from_mask(mask, options);
+    CV_Assert(contour.status == ContourStatus::kOk);
     for (auto& p : contour.points)  // pixel centres back to the box's pixels
       p = cv::Point2d(b.x + (p.x + 0.5) * sx - 0.5, b.y + (p.y + 0.5) * sy - 0.5);
     outlines.push_back(std::move(contour.points));

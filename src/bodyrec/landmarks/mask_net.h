@@ -48,18 +48,16 @@ class BodyMaskNet {
   cv::Mat logits(const cv::Mat& bgr, const Box& box) const;
   // The same from dlib's own forward pass (slower): the check that the network OpenCV runs is dlib's.
   cv::Mat reference_logits(const cv::Mat& bgr, const Box& box) const;
-  // What mask() and fit() threshold: with mirror averaging (the default), the mean of logits() on the
+  // What fit() thresholds: with mirror averaging (the default), the mean of logits() on the
   // crop and, flipped back, on its mirror image (the network learnt both; their mean is steadier where
   // it is unsure, e.g. between the legs); without, logits().
   cv::Mat fitting_logits(const cv::Mat& bgr, const Box& box) const;
   // A fitting option, not saved with the model: on after loading or training.
   void set_mirror_average(bool on);
   bool mirror_average() const;
-  // The body mask over the box rounded to whole pixels (CV_8U, 255 = body): fitting_logits() above the
-  // threshold, resized to the box. When no pixel passes, the pixels within 1 of the highest (never empty).
-  cv::Mat mask(const cv::Mat& bgr, const Box& box) const;
-  // `landmarks` points on the outline of mask()'s largest component, numbered as contour_from_mask (traced
-  // at no more than twice the network's rows, then scaled to the box).
+  // `landmarks` points on the outline of the body mask's largest component, numbered as contour_from_mask.
+  // The mask is fitting_logits() above the threshold, upsampled to the box but at most twice the network's
+  // rows tall (the outline is scaled to the box); when no pixel passes, the pixels within 1 of the highest.
   std::vector<cv::Point2d> fit(const cv::Mat& bgr, const Box& box, int landmarks) const;
   // The same outline at several thresholds (threshold() + each offset) from one network batch: one
   // outline per offset, in order. REQUIRES: offsets not empty.
