@@ -17,13 +17,14 @@ struct EvalLandmarksCommand {
   std::string xml, shape, per_person;
   std::optional<double> mask_threshold;
   std::vector<double> threshold_offsets;
-  bool json = false, no_mirror = false;
+  bool json = false, no_mirror = false, no_correction = false;
 
   void run() const {
     BodyShapeModel model(shape);
     if (mask_threshold) model.set_mask_threshold(*mask_threshold);
     if (!threshold_offsets.empty()) model.set_threshold_offsets(threshold_offsets);
     if (no_mirror) model.set_mirror_average(false);
+    if (no_correction) model.set_shape_correction(false);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
     std::vector<PersonLandmarkError> errors;
@@ -65,6 +66,8 @@ void add(CLI::App& eval) {
   sub->add_flag("--no-mirror", command->no_mirror,
                 "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
                 "image's (for comparison)");
+  sub->add_flag("--no-correction", command->no_correction,
+                "mask-net models: leave out the model's linear shape correction (for comparison)");
   sub->add_option("--per-person", command->per_person,
                   "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "
                   "contour_px); `bodyrec report --eval FILE` draws their histogram");

@@ -95,11 +95,13 @@ void add(CLI::App& app) {
       "mask's outline, numbered like the training contours (point 0 at the head top, clockwise, equal arc\n"
       "length), each then moved along it by its mean offset on the training people (stored in the model);\n"
       "fitting thresholds the mean of the network's logits on the box and on its mirror image (eval landmarks\n"
-      "--no-mirror) and averages each landmark over the outlines at five thresholds (--threshold-offsets).\n"
-      "Its target masks are the filled landmark polygons. Threads come from the BLAS library\n"
-      "(OPENBLAS_NUM_THREADS). trees: the thesis's dlib regression trees; the thesis used --oversampling 500\n"
-      "--nu 0.05 --tree-depth 2 and dlib's other defaults; tuned on Penn-Fudan: --oversampling 40\n"
-      "--trees-per-level 100. Figures for both: docs/benchmarks.md.\n"
+      "--no-mirror) and averages each landmark over the outlines at five thresholds (--threshold-offsets),\n"
+      "then applies a linear correction of the whole shape learnt on the training people's fits (ridge\n"
+      "regression, stored in the model; eval landmarks --no-correction). Its target masks are the filled\n"
+      "landmark polygons. Threads come from the BLAS library (OPENBLAS_NUM_THREADS). trees: the thesis's\n"
+      "dlib regression trees; the thesis used --oversampling 500 --nu 0.05 --tree-depth 2 and dlib's other\n"
+      "defaults; tuned on Penn-Fudan: --oversampling 40 --trees-per-level 100. Figures for both:\n"
+      "docs/benchmarks.md.\n"
       "Example: bodyrec train-shape out/contours/train.xml --out out/shape.dat\n"
       "         bodyrec train-shape out/contours/train.xml --out out/trees.dat --method trees --oversampling 40 --trees-per-level 100");
   sub->add_option("train", command->train_xml, "Training set: imglab XML with numbered <part>s per box")->required();

@@ -16,7 +16,8 @@ namespace bodyrec {
 BodyShapeModel::BodyShapeModel() : impl_(std::make_unique<Impl>()) {}
 
 // A mask-net file is its magic bytes, the network, the landmark count, then (files since 2026-12-02)
-// the landmarks' arc offsets; anything else is read as a dlib shape_predictor.
+// the landmarks' arc offsets, then (since 2026-12-03) the shape correction; anything else is read as a
+// dlib shape_predictor.
 BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("cannot read shape model " + path);
@@ -38,6 +39,8 @@ BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
     if (impl_->arc_offsets.size() != static_cast<size_t>(impl_->landmarks) ||
         !std::all_of(impl_->arc_offsets.begin(), impl_->arc_offsets.end(), [](double o) { return std::abs(o) < 0.5; }))
       throw InputError(path + ": mask-net model has invalid arc offsets");
+    if (in.peek() == std::char_traits<char>::eof()) return;  // written before the shape correction
+    impl_->correction = ShapeCorrection::read(in, impl_->landmarks, path);
     return;
   }
   try {
@@ -77,6 +80,11 @@ void BodyShapeModel::set_mirror_average(bool on) {
   impl_->net->set_mirror_average(on);
 }
 
+void BodyShapeModel::set_shape_correction(bool on) {
+  if (!impl_->net) throw UsageError("--no-correction applies to mask-net models only (this one has regression trees)");
+  impl_->use_correction = on;
+}
+
 cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
   const int wanted = impl_->net ? CV_8UC3 : CV_8UC1;
   if (image.type() == wanted) return image;
@@ -100,7 +108,7 @@ std::vector<cv::Point2d> BodyShapeModel::fit(const cv::Mat& image, const Box& bo
       const std::vector<cv::Point2d> points = impl_->arc_offsets.empty() ? outline : points_at_arc(outline, at);
       for (size_t k = 0; k < mean.size(); ++k) mean[k] += points[k] / static_cast<double>(outlines.size());
     }
-    return mean;
+    return impl_->use_correction ? impl_->correction.apply(mean, box) : mean;
   }
   CV_Assert(image.type() == CV_8UC1);
   const dlib::cv_image<unsigned char> view(image);

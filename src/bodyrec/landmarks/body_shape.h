@@ -2,7 +2,8 @@
 // by the model file: the thesis's dlib ensemble of regression trees (Kazemi & Sullivan 2014; grey image)
 // and bodyrec's per-pixel body mask network (mask_net.h; colour image), whose landmarks are the mask's
 // outline numbered like the training contours, each point then moved along it by the model's per-landmark
-// arc offset (measured on the training people). Loading and fitting here; training in shape_training.h.
+// arc offset, then corrected by a linear map of the whole shape (shape_correction.h; both learnt on the
+// training people). Loading and fitting here; training in shape_training.h.
 #pragma once
 
 #include <memory>
@@ -51,6 +52,9 @@ class BodyShapeModel {
   // image (true, the default) or the box's alone (BodyMaskNet::fitting_logits). Throws UsageError for
   // the trees.
   void set_mirror_average(bool on);
+  // Mask network only: fit() applies the model's linear shape correction (true, the default; models
+  // trained before 2026-12-03 have none) or not. Throws UsageError for the trees.
+  void set_shape_correction(bool on);
 
  private:
   friend class ShapeModelAccess;

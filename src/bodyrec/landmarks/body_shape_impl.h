@@ -10,6 +10,7 @@
 #include "bodyrec/core/geometry.h"
 #include "bodyrec/landmarks/body_shape.h"
 #include "bodyrec/landmarks/mask_net.h"
+#include "bodyrec/landmarks/shape_correction.h"
 
 namespace bodyrec {
 
@@ -23,6 +24,10 @@ struct BodyShapeModel::Impl {
   // Mask network: fit() averages each landmark over the outlines at the model's threshold plus each of
   // these logit offsets (BodyShapeModel::set_threshold_offsets).
   std::vector<double> threshold_offsets = kDefaultThresholdOffsets;
+  // Mask network: applied to the averaged landmarks (empty = none: older files); `use_correction` is
+  // BodyShapeModel::set_shape_correction.
+  ShapeCorrection correction;
+  bool use_correction = true;
 };
 
 inline dlib::rectangle to_dlib_rect(const Box& b) {
@@ -47,6 +52,9 @@ class ShapeModelAccess {
   }
   static void set_arc_offsets(BodyShapeModel& model, std::vector<double> offsets) {
     model.impl_->arc_offsets = std::move(offsets);
+  }
+  static void set_correction(BodyShapeModel& model, ShapeCorrection correction) {
+    model.impl_->correction = std::move(correction);
   }
   static const BodyShapeModel::Impl& impl(const BodyShapeModel& model) { return *model.impl_; }
 };

@@ -199,10 +199,13 @@ TEST_F(TrainedMaskNet, ArcOffsetsFromTrainingMoveThePointsAlongTheOutline) {
   save_body_shape(old, path);
   BodyShapeModel loaded(path);
   EXPECT_TRUE(ShapeModelAccess::impl(loaded).arc_offsets.empty());
-  // One outline each (by default fit() averages several thresholds' outlines: the next test).
+  // One outline each (by default fit() averages several thresholds' outlines: the next test), without the
+  // shape correction (stored after the offsets, so the older file has none either).
+  EXPECT_TRUE(ShapeModelAccess::impl(loaded).correction.empty());
   loaded.set_threshold_offsets({0.0});
   BodyShapeModel single(saved(dir));
   single.set_threshold_offsets({0.0});
+  single.set_shape_correction(false);
   const auto& image = train_->images[2];
   const auto plain = loaded.fit(loaded.prepare(image.image), image.people[0].box);
   const auto moved = single.fit(single.prepare(image.image), image.people[0].box);
@@ -230,6 +233,7 @@ TEST_F(TrainedMaskNet, FitAveragesTheOutlinesAtEachThresholdOffset) {
   std::vector<double> at(60);
   for (size_t k = 0; k < at.size(); ++k) at[k] = static_cast<double>(k) / at.size() + offsets[k];
   model.set_threshold_offsets({-1.0, 0.0, 2.5});
+  model.set_shape_correction(false);  // the next test
   const auto mean = model.fit(prepared, box);
   ASSERT_EQ(mean.size(), 60u);
   for (size_t k = 0; k < mean.size(); ++k) {
@@ -239,10 +243,39 @@ TEST_F(TrainedMaskNet, FitAveragesTheOutlinesAtEachThresholdOffset) {
   }
   // The averaged points still recover the drawn people (as the single outline does above).
   model.set_threshold_offsets(kDefaultThresholdOffsets);
+  model.set_shape_correction(true);
   EXPECT_LT(evaluate_body_shape(model, drawn_people(8, 900), "drawn").mean_px, 4.0);
   // Bad lists are usage errors naming the option.
   EXPECT_TRUE(testing::contains(testing::usage_error([&] { model.set_threshold_offsets({}); }), "--threshold-offsets"));
   EXPECT_TRUE(testing::contains(testing::usage_error([&] { model.set_threshold_offsets({0.0, NAN}); }), "finite"));
+}
+
+TEST_F(TrainedMaskNet, ShapeCorrectionFromTrainingMovesTheAveragedPoints) {
+  const ShapeCorrection& correction = ShapeModelAccess::impl(*model_).correction;
+  ASSERT_FALSE(correction.empty());
+  EXPECT_EQ(correction.landmarks(), 60);
+  testing::TempDir dir;
+  BodyShapeModel without(saved(dir));
+  without.set_shape_correction(false);
+  const auto& image = train_->images[6];
+  const Box box = image.people[0].box;
+  const auto plain = without.fit(without.prepare(image.image), box);
+  const auto corrected = model_->fit(model_->prepare(image.image), box);
+  const auto expected = correction.apply(plain, box);
+  ASSERT_EQ(corrected.size(), 60u);
+  double moved = 0;
+  for (size_t k = 0; k < corrected.size(); ++k) {
+    EXPECT_NEAR(cv::norm(corrected[k] - expected[k]), 0.0, 1e-9) << k;
+    moved += cv::norm(corrected[k] - plain[k]) / 60;
+  }
+  EXPECT_GT(moved, 0.01);  // it does something...
+  EXPECT_LT(moved, 3.0);   // ...but little on drawn people, whose outlines are numbered almost like the truth
+  // The trees have no correction to leave out.
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] {
+                                  BodyShapeModel trees = ShapeModelAccess::make(dlib::shape_predictor());
+                                  trees.set_shape_correction(false);
+                                }),
+                                "--no-correction applies to mask-net models only"));
 }
 
 TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
@@ -256,7 +289,19 @@ TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
   const std::string cut = testing::input_error([&] { BodyShapeModel m((dir / "cut.dat").string()); });
   EXPECT_TRUE(testing::contains(cut, "cut.dat")) << cut;
   EXPECT_TRUE(testing::contains(cut, "truncated or corrupt")) << cut;
-  testing::write_text(dir / "nooffsets.dat", bytes.substr(0, bytes.size() - 1));
+  testing::write_text(dir / "nocorrection.dat", bytes.substr(0, bytes.size() - 1));
+  const std::string correction =
+      testing::input_error([&] { BodyShapeModel m((dir / "nocorrection.dat").string()); });
+  EXPECT_TRUE(testing::contains(correction, "nocorrection.dat: truncated mask-net model (shape correction)"))
+      << correction;
+  // A file written before the shape correction ends after the arc offsets: it loads; cut in the offsets.
+  BodyShapeModel older(good);
+  ShapeModelAccess::set_correction(older, ShapeCorrection());
+  save_body_shape(older, (dir / "older.dat").string());
+  EXPECT_TRUE(ShapeModelAccess::impl(BodyShapeModel((dir / "older.dat").string())).correction.empty());
+  std::ifstream older_in(dir / "older.dat", std::ios::binary);
+  const std::string older_bytes((std::istreambuf_iterator<char>(older_in)), std::istreambuf_iterator<char>());
+  testing::write_text(dir / "nooffsets.dat", older_bytes.substr(0, older_bytes.size() - 1));
   const std::string offsets = testing::input_error([&] { BodyShapeModel m((dir / "nooffsets.dat").string()); });
   EXPECT_TRUE(testing::contains(offsets, "nooffsets.dat")) << offsets;
   EXPECT_TRUE(testing::contains(offsets, "arc offsets")) << offsets;

@@ -24,6 +24,7 @@ cv::Mat gray_of(const cv::Mat& image) {
 
 BodyShapeModel train_trees(const LandmarkDataset& data, const ShapeTrainOptions& options);
 std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDataset& data);
+ShapeCorrection shape_correction(const BodyShapeModel& model, const LandmarkDataset& data);
 
 }  // namespace
 
@@ -49,10 +50,25 @@ BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOpt
   net.verbose = net.verbose || options.verbose;
   BodyShapeModel model = ShapeModelAccess::make(train_body_mask_net(data, net), data.landmarks);
   ShapeModelAccess::set_arc_offsets(model, arc_offsets(model, data));
+  ShapeModelAccess::set_correction(model, shape_correction(model, data));
   return model;
 }
 
 namespace {
+
+// Calls f(prepared image, person) for every person the model can be scored on: not ignored, with as many
+// landmarks as the model, in a box of some area.
+template <typename F>
+void for_each_training_person(const BodyShapeModel& model, const LandmarkDataset& data, F f) {
+  for (const auto& image : data.images) {
+    if (image.image.empty()) continue;
+    const cv::Mat prepared = model.prepare(image.image);
+    for (const auto& person : image.people)
+      if (!person.ignore && person.landmarks.size() == static_cast<size_t>(model.landmarks()) &&
+          person.box.area() > 0)
+        f(prepared, person);
+  }
+}
 
 // Per landmark, the mean over the training people of where the true point lies along the fitted outline
 // minus its equal-arc-length place. The fitted outline is smoother than the pixel outline the landmarks
@@ -62,25 +78,34 @@ std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDatas
   const size_t n = static_cast<size_t>(model.landmarks());
   std::vector<double> sum(n, 0.0);
   int people = 0;
-  for (const auto& image : data.images) {
-    if (image.image.empty()) continue;
-    const cv::Mat prepared = model.prepare(image.image);
-    for (const auto& person : image.people) {
-      if (person.ignore || person.landmarks.size() != n || person.box.area() <= 0) continue;
-      // The outline fitting starts from: the model's own threshold, mirror-averaged logits (the default of
-      // a trained network), before any offsets (fit() would average several thresholds).
-      const std::vector<cv::Point2d> outline =
-          ShapeModelAccess::impl(model).net->fit(prepared, person.box, static_cast<int>(n));
-      for (size_t k = 0; k < n; ++k) {
-        double d = project_to_closed_polyline(person.landmarks[k], outline).arc - static_cast<double>(k) / n;
-        sum[k] += d - std::round(d);  // the shorter way round
-      }
-      ++people;
+  for_each_training_person(model, data, [&](const cv::Mat& prepared, const AnnotatedPerson& person) {
+    // The outline fitting starts from: the model's own threshold, mirror-averaged logits (the default of
+    // a trained network), before any offsets (fit() would average several thresholds).
+    const std::vector<cv::Point2d> outline =
+        ShapeModelAccess::impl(model).net->fit(prepared, person.box, static_cast<int>(n));
+    for (size_t k = 0; k < n; ++k) {
+      double d = project_to_closed_polyline(person.landmarks[k], outline).arc - static_cast<double>(k) / n;
+      sum[k] += d - std::round(d);  // the shorter way round
     }
-  }
+    ++people;
+  });
   if (people == 0) return {};
   for (double& s : sum) s /= people;
   return sum;
+}
+
+// Learnt on the training people's fits as fit() makes them before the correction (every threshold
+// offset, the arc offsets, mirror-averaged logits).
+ShapeCorrection shape_correction(const BodyShapeModel& model, const LandmarkDataset& data) {
+  std::vector<std::vector<cv::Point2d>> fitted, truth;
+  std::vector<Box> boxes;
+  for_each_training_person(model, data, [&](const cv::Mat& prepared, const AnnotatedPerson& person) {
+    fitted.push_back(model.fit(prepared, person.box));
+    truth.push_back(person.landmarks);
+    boxes.push_back(person.box);
+  });
+  if (fitted.empty()) return {};
+  return ShapeCorrection::learn(fitted, truth, boxes, kShapeCorrectionRidge);
 }
 
 BodyShapeModel train_trees(const LandmarkDataset& data, const ShapeTrainOptions& options) {
@@ -130,7 +155,10 @@ void save_body_shape(const BodyShapeModel& model, const std::string& path) {
   if (impl.net) {
     impl.net->save(out);
     dlib::serialize(impl.landmarks, out);
-    if (!impl.arc_offsets.empty()) dlib::serialize(impl.arc_offsets, out);
+    if (!impl.arc_offsets.empty()) {
+      dlib::serialize(impl.arc_offsets, out);
+      if (!impl.correction.empty()) impl.correction.write(out);
+    }
   } else {
     dlib::serialize(impl.predictor, out);
   }
