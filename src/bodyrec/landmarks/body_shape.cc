@@ -12,6 +12,11 @@
 #include "bodyrec/landmarks/contour.h"
 
 namespace bodyrec {
+namespace {
+
+bool at_end(std::istream& in) { return in.peek() == std::char_traits<char>::eof(); }
+
+}  // namespace
 
 BodyShapeModel::BodyShapeModel() : impl_(std::make_unique<Impl>()) {}
 
@@ -30,7 +35,7 @@ BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
     }
     if (impl_->landmarks < 3 || impl_->landmarks > 10000)
       throw InputError(path + ": mask-net model has an invalid landmark count");
-    if (in.peek() == std::char_traits<char>::eof()) return;  // written before the arc offsets
+    if (at_end(in)) return;  // written before the arc offsets
     try {
       dlib::deserialize(impl_->arc_offsets, in);
     } catch (const dlib::serialization_error&) {
@@ -39,7 +44,7 @@ BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
     if (impl_->arc_offsets.size() != static_cast<size_t>(impl_->landmarks) ||
         !std::all_of(impl_->arc_offsets.begin(), impl_->arc_offsets.end(), [](double o) { return std::abs(o) < 0.5; }))
       throw InputError(path + ": mask-net model has invalid arc offsets");
-    if (in.peek() == std::char_traits<char>::eof()) return;  // written before the shape correction
+    if (at_end(in)) return;  // written before the shape correction
     impl_->correction = ShapeCorrection::read(in, impl_->landmarks, path);
     return;
   }

@@ -195,12 +195,13 @@ TEST_F(TrainedMaskNet, ArcOffsetsFromTrainingMoveThePointsAlongTheOutline) {
   const std::string path = (dir / "old.dat").string();
   save_body_shape(*model_, path);
   BodyShapeModel old(path);
+  ShapeModelAccess::set_correction(old, ShapeCorrection());  // stored after the offsets: none either
   ShapeModelAccess::set_arc_offsets(old, {});
   save_body_shape(old, path);
   BodyShapeModel loaded(path);
   EXPECT_TRUE(ShapeModelAccess::impl(loaded).arc_offsets.empty());
   // One outline each (by default fit() averages several thresholds' outlines: the next test), without the
-  // shape correction (stored after the offsets, so the older file has none either).
+  // shape correction (a later test).
   EXPECT_TRUE(ShapeModelAccess::impl(loaded).correction.empty());
   loaded.set_threshold_offsets({0.0});
   BodyShapeModel single(saved(dir));
@@ -270,6 +271,24 @@ TEST_F(TrainedMaskNet, ShapeCorrectionFromTrainingMovesTheAveragedPoints) {
   }
   EXPECT_GT(moved, 0.01);  // it does something...
   EXPECT_LT(moved, 3.0);   // ...but little on drawn people, whose outlines are numbered almost like the truth
+  // The saved model applies the same correction.
+  const BodyShapeModel loaded(saved(dir));
+  EXPECT_EQ(loaded.fit(loaded.prepare(image.image), box), corrected);
+  // Ridge regression lowers the squared error (box units) on the people it was learnt on.
+  double before = 0, after = 0;
+  for (const auto& im : train_->images) {
+    for (const auto& person : im.people) {
+      const auto p0 = without.fit(without.prepare(im.image), person.box);
+      const auto p1 = model_->fit(model_->prepare(im.image), person.box);
+      for (size_t k = 0; k < p0.size(); ++k) {
+        const cv::Point2d e0 = (p0[k] - person.landmarks[k]) / person.box.height;
+        const cv::Point2d e1 = (p1[k] - person.landmarks[k]) / person.box.height;
+        before += e0.dot(e0);
+        after += e1.dot(e1);
+      }
+    }
+  }
+  EXPECT_LT(after, before);
   // The trees have no correction to leave out.
   EXPECT_TRUE(testing::contains(testing::usage_error([&] {
                                   BodyShapeModel trees = ShapeModelAccess::make(dlib::shape_predictor());
@@ -284,15 +303,15 @@ TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
   save_body_shape(*model_, good);
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // Truncated in the network, and cut in the arc offsets at the end.
+  // Truncated in the network, and cut in the shape correction at the end.
   testing::write_text(dir / "cut.dat", bytes.substr(0, bytes.size() / 2));
   const std::string cut = testing::input_error([&] { BodyShapeModel m((dir / "cut.dat").string()); });
   EXPECT_TRUE(testing::contains(cut, "cut.dat")) << cut;
   EXPECT_TRUE(testing::contains(cut, "truncated or corrupt")) << cut;
-  testing::write_text(dir / "nocorrection.dat", bytes.substr(0, bytes.size() - 1));
+  testing::write_text(dir / "cutcorrection.dat", bytes.substr(0, bytes.size() - 1));
   const std::string correction =
-      testing::input_error([&] { BodyShapeModel m((dir / "nocorrection.dat").string()); });
-  EXPECT_TRUE(testing::contains(correction, "nocorrection.dat: truncated mask-net model (shape correction)"))
+      testing::input_error([&] { BodyShapeModel m((dir / "cutcorrection.dat").string()); });
+  EXPECT_TRUE(testing::contains(correction, "cutcorrection.dat: truncated mask-net model (shape correction)"))
       << correction;
   // A file written before the shape correction ends after the arc offsets: it loads; cut in the offsets.
   BodyShapeModel older(good);

@@ -11,6 +11,11 @@
 namespace bodyrec {
 namespace {
 
+template <typename T>
+bool all_finite(const std::vector<T>& values) {
+  return std::all_of(values.begin(), values.end(), [](T v) { return std::isfinite(v); });
+}
+
 // x0 y0 x1 y1 ... in box units (x from the box's centre, y from its top, both / height): the same person
 // at any size or place gives the same vector.
 void to_box_units(const std::vector<cv::Point2d>& points, const Box& box, double* out) {
@@ -43,11 +48,15 @@ ShapeCorrection ShapeCorrection::learn(const std::vector<std::vector<cv::Point2d
   const cv::Mat centred = x - cv::repeat(mean, people, 1);
   const cv::Mat target = residual - cv::repeat(bias, people, 1);
   cv::Mat normal = centred.t() * centred + ridge * cv::Mat::eye(dims, dims, CV_64F), weights;
-  cv::solve(normal, centred.t() * target, weights, cv::DECOMP_CHOLESKY);
+  const bool solved = cv::solve(normal, centred.t() * target, weights, cv::DECOMP_CHOLESKY);
   ShapeCorrection c;
   c.mean_.assign(mean.begin<double>(), mean.end<double>());
   c.bias_.assign(bias.begin<double>(), bias.end<double>());
   c.weights_.assign(weights.begin<double>(), weights.end<double>());
+  // Finite input and ridge > 0 make the system positive definite; anything else would be saved in a
+  // model that read() then refuses, after the whole training.
+  if (!solved || !all_finite(c.mean_) || !all_finite(c.bias_) || !all_finite(c.weights_))
+    throw ProcessingError("shape correction: the ridge regression has no finite solution (a landmark that is not a number?)");
   return c;
 }
 
@@ -59,7 +68,7 @@ std::vector<cv::Point2d> ShapeCorrection::apply(const std::vector<cv::Point2d>& 
   to_box_units(points, box, x.data());
   std::vector<float> centred(x.size());
   for (size_t j = 0; j < x.size(); ++j) centred[j] = static_cast<float>(x[j] - mean_[j]);
-  cv::Mat delta;
+  cv::Mat delta;  // gemm only reads the weights: the const_cast just wraps them without a copy
   cv::gemm(cv::Mat(1, dims, CV_32F, centred.data()), cv::Mat(dims, dims, CV_32F, const_cast<float*>(weights_.data())),
            1.0, cv::noArray(), 0.0, delta);
   const float* d = delta.ptr<float>(0);
@@ -85,10 +94,8 @@ ShapeCorrection ShapeCorrection::read(std::istream& in, int landmarks, const std
     throw InputError(name + ": truncated mask-net model (shape correction)");
   }
   const size_t dims = 2 * static_cast<size_t>(landmarks);
-  const auto finite = [](double v) { return std::isfinite(v); };
   if (c.mean_.size() != dims || c.bias_.size() != dims || c.weights_.size() != dims * dims ||
-      !std::all_of(c.mean_.begin(), c.mean_.end(), finite) || !std::all_of(c.bias_.begin(), c.bias_.end(), finite) ||
-      !std::all_of(c.weights_.begin(), c.weights_.end(), finite))
+      !all_finite(c.mean_) || !all_finite(c.bias_) || !all_finite(c.weights_))
     throw InputError(name + ": mask-net model has an invalid shape correction");
   return c;
 }

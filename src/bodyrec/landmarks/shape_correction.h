@@ -28,6 +28,7 @@ class ShapeCorrection {
   // y from its top, each divided by the box's height): true = fitted + bias + (fitted - mean) W, W
   // minimising the squared error plus `ridge` |W|^2. REQUIRES: fitted, truth and boxes have the same
   // number of people (>= 1), every shape the same number of points (>= 1), boxes taller than 0, ridge > 0.
+  // Throws ProcessingError when the solution is not finite (a point that is not a number).
   static ShapeCorrection learn(const std::vector<std::vector<cv::Point2d>>& fitted,
                                const std::vector<std::vector<cv::Point2d>>& truth, const std::vector<Box>& boxes,
                                double ridge);

@@ -6,6 +6,7 @@
 #include <random>
 #include <sstream>
 
+#include <dlib/serialize.h>
 #include <gtest/gtest.h>
 
 #include "bodyrec/core/error.h"
@@ -96,14 +97,24 @@ TEST(ShapeCorrection, ReadsWhatItWritesAndNamesBrokenInput) {
   std::istringstream other(bytes);
   EXPECT_TRUE(testing::contains(testing::input_error([&] { ShapeCorrection::read(other, 4, "m.dat"); }),
                                 "m.dat: mask-net model has an invalid shape correction"));
-  Pairs bad = train;
-  bad.truth[0][1].x = NAN;
-  const ShapeCorrection nan = ShapeCorrection::learn(bad.fitted, bad.truth, bad.boxes, 0.1);
   std::ostringstream nan_out;
-  nan.write(nan_out);
+  dlib::serialize(std::vector<double>(6, 0.0), nan_out);
+  dlib::serialize(std::vector<double>{0, 0, NAN, 0, 0, 0}, nan_out);
+  dlib::serialize(std::vector<float>(36, 0.0f), nan_out);
   std::istringstream nan_in(nan_out.str());
   EXPECT_TRUE(testing::contains(testing::input_error([&] { ShapeCorrection::read(nan_in, 3, "n.dat"); }),
                                 "n.dat: mask-net model has an invalid shape correction"));
+}
+
+TEST(ShapeCorrection, RefusesToLearnFromPointsThatAreNotNumbers) {
+  Pairs bad = linear_pairs(50, 4);
+  bad.truth[0][1].x = NAN;
+  try {
+    ShapeCorrection::learn(bad.fitted, bad.truth, bad.boxes, 0.1);
+    ADD_FAILURE() << "no ProcessingError";
+  } catch (const ProcessingError& e) {
+    EXPECT_TRUE(testing::contains(e.what(), "shape correction: the ridge regression has no finite solution")) << e.what();
+  }
 }
 
 }  // namespace

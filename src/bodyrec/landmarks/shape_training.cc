@@ -97,6 +97,7 @@ std::vector<double> arc_offsets(const BodyShapeModel& model, const LandmarkDatas
 // Learnt on the training people's fits as fit() makes them before the correction (every threshold
 // offset, the arc offsets, mirror-averaged logits).
 ShapeCorrection shape_correction(const BodyShapeModel& model, const LandmarkDataset& data) {
+  CV_Assert(ShapeModelAccess::impl(model).correction.empty());  // fit() must not apply one yet
   std::vector<std::vector<cv::Point2d>> fitted, truth;
   std::vector<Box> boxes;
   for_each_training_person(model, data, [&](const cv::Mat& prepared, const AnnotatedPerson& person) {
@@ -155,10 +156,10 @@ void save_body_shape(const BodyShapeModel& model, const std::string& path) {
   if (impl.net) {
     impl.net->save(out);
     dlib::serialize(impl.landmarks, out);
-    if (!impl.arc_offsets.empty()) {
-      dlib::serialize(impl.arc_offsets, out);
-      if (!impl.correction.empty()) impl.correction.write(out);
-    }
+    // The correction is read only after the offsets: a model cannot have one without the other.
+    CV_Assert(impl.correction.empty() || !impl.arc_offsets.empty());
+    if (!impl.arc_offsets.empty()) dlib::serialize(impl.arc_offsets, out);
+    if (!impl.correction.empty()) impl.correction.write(out);
   } else {
     dlib::serialize(impl.predictor, out);
   }
