@@ -16,13 +16,18 @@ bool all_finite(const std::vector<T>& values) {
   return std::all_of(values.begin(), values.end(), [](T v) { return std::isfinite(v); });
 }
 
-// x0 y0 x1 y1 ... in box units (x from the box's centre, y from its top, both / height): the same person
-// at any size or place gives the same vector.
+// A point in box units (x from the box's centre, y from its top, both / height): the same person at any
+// size or place gives the same shape.
+cv::Point2d box_units(const cv::Point2d& p, const Box& box) {
+  return {(p.x - (box.x + box.width / 2)) / box.height, (p.y - box.y) / box.height};
+}
+
+// x0 y0 x1 y1 ... in box units.
 void to_box_units(const std::vector<cv::Point2d>& points, const Box& box, double* out) {
-  const double cx = box.x + box.width / 2;
   for (size_t k = 0; k < points.size(); ++k) {
-    out[2 * k] = (points[k].x - cx) / box.height;
-    out[2 * k + 1] = (points[k].y - box.y) / box.height;
+    const cv::Point2d u = box_units(points[k], box);
+    out[2 * k] = u.x;
+    out[2 * k + 1] = u.y;
   }
 }
 
@@ -64,10 +69,12 @@ std::vector<cv::Point2d> ShapeCorrection::apply(const std::vector<cv::Point2d>& 
   if (empty()) return points;
   const int dims = static_cast<int>(bias_.size());
   CV_Assert(static_cast<int>(2 * points.size()) == dims);
-  std::vector<double> x(bias_.size());
-  to_box_units(points, box, x.data());
-  std::vector<float> centred(x.size());
-  for (size_t j = 0; j < x.size(); ++j) centred[j] = static_cast<float>(x[j] - mean_[j]);
+  std::vector<float> centred(bias_.size());  // per person, so straight to the float the weights take
+  for (size_t k = 0; k < points.size(); ++k) {
+    const cv::Point2d u = box_units(points[k], box);
+    centred[2 * k] = static_cast<float>(u.x - mean_[2 * k]);
+    centred[2 * k + 1] = static_cast<float>(u.y - mean_[2 * k + 1]);
+  }
   cv::Mat delta;  // gemm only reads the weights: the const_cast just wraps them without a copy
   cv::gemm(cv::Mat(1, dims, CV_32F, centred.data()), cv::Mat(dims, dims, CV_32F, const_cast<float*>(weights_.data())),
            1.0, cv::noArray(), 0.0, delta);
