@@ -115,6 +115,8 @@ void add(CLI::App& app) {
   sub->add_option("--batch", o.net.batch, "mask-net: crops per mini-batch")->capture_default_str();
   sub->add_option("--learning-rate", o.net.learning_rate, "mask-net: peak learning rate (Adam; warm-up, then cosine)")
       ->capture_default_str();
+  sub->add_option("--weight-decay", o.net.weight_decay, "mask-net: L2 penalty on the weights (Adam's)")
+      ->capture_default_str();
   sub->add_option("--mask-threshold", o.net.threshold, "mask-net: logit above which a pixel is body (kept in the model)")
       ->capture_default_str();
   sub->add_option("--box-jitter", o.net.box_jitter, "mask-net: std-dev of random box shifts and size changes (fraction)")

@@ -213,6 +213,7 @@ void MaskNetTrainOptions::check() const {
   if (iterations < 1) throw UsageError("--iterations must be >= 1");
   if (batch < 1) throw UsageError("--batch must be >= 1");
   if (!(learning_rate > 0 && learning_rate < 1)) throw UsageError("--learning-rate must be in (0, 1)");
+  if (!(weight_decay >= 0 && weight_decay < 1)) throw UsageError("--weight-decay must be in [0, 1)");
   if (!std::isfinite(threshold)) throw UsageError("--mask-threshold must be a finite logit");
   if (!(box_jitter >= 0 && box_jitter <= 0.5)) throw UsageError("--box-jitter must be in [0, 0.5]");
 }
@@ -376,7 +377,7 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   const double j = options.box_jitter;
 
   TrainNet net;
-  dlib::dnn_trainer<TrainNet, dlib::adam> trainer(net, dlib::adam(0, 0.9, 0.999));
+  dlib::dnn_trainer<TrainNet, dlib::adam> trainer(net, dlib::adam(static_cast<float>(options.weight_decay), 0.9f, 0.999f));
   trainer.set_mini_batch_size(static_cast<unsigned long>(options.batch));
   dlib::matrix<double> schedule(1, options.iterations);
   const int warm_up = std::max(1, options.iterations / 10);

@@ -2,6 +2,7 @@
 // network, the model file and its errors.
 #include "bodyrec/landmarks/mask_net.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -66,6 +67,11 @@ TEST(MaskNet, OptionsAreChecked) {
   o = MaskNetTrainOptions();
   o.box_jitter = 0.9;
   EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--box-jitter"));
+  o = MaskNetTrainOptions();
+  o.weight_decay = -1e-4;
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
+  o.weight_decay = std::nan("");
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
   EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
 }
 
