@@ -53,8 +53,8 @@ void add(CLI::App& eval) {
   sub->footer(
       "Error per person = mean distance between predicted and true landmark i; also divided by the box height\n"
       "and by the image width (the thesis's measure), and point-to-contour (distance to the true outline).\n"
-      "The model's shape correction stays on with --mask-threshold, --threshold-offsets and --no-mirror,\n"
-      "although it was learnt on fits with the defaults.\n"
+      "The model's shape correction stays on with --mask-threshold, --threshold-offsets and --no-mirror:\n"
+      "it was learnt on fits with the defaults but still lowers the error with each (docs/benchmarks.md).\n"
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
   sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
