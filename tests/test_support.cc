@@ -52,9 +52,11 @@ fs::path data_path(const std::string& relative) {
 
 fs::path vtest_path() { return "/usr/share/doc/opencv-doc/examples/data/vtest.avi"; }
 
-RunResult run_bodyrec(const std::vector<std::string>& args) {
+RunResult run_bodyrec(const std::vector<std::string>& args, const std::vector<std::string>& prefix) {
   TempDir tmp;
-  std::string cmd = shell_quote(env_or("BODYREC_BIN", BODYREC_BIN_DEFAULT));
+  std::string cmd;
+  for (const auto& p : prefix) cmd += shell_quote(p) + " ";
+  cmd += shell_quote(env_or("BODYREC_BIN", BODYREC_BIN_DEFAULT));
   for (const auto& a : args) cmd += " " + shell_quote(a);
   cmd += " >" + shell_quote((tmp / "out").string()) + " 2>" + shell_quote((tmp / "err").string()) +
          " </dev/null";

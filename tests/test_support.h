@@ -40,7 +40,8 @@ struct RunResult {
 };
 
 // Runs build/bin/bodyrec with the given arguments (each shell-quoted), capturing stdout and stderr.
-RunResult run_bodyrec(const std::vector<std::string>& args);
+// `prefix` (e.g. a command that drops privileges) is put before it, each word shell-quoted.
+RunResult run_bodyrec(const std::vector<std::string>& args, const std::vector<std::string>& prefix = {});
 
 // A fresh empty directory under the system temp dir, removed at destruction.
 class TempDir {
