@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <istream>
 #include <ostream>
@@ -390,6 +391,10 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
 
   std::vector<dlib::matrix<dlib::rgb_pixel>> crops;
   std::vector<dlib::matrix<float>> labels;
+  // dlib sets the layers up on the first step, drawing their initial weights from std::rand(): from the C
+  // library's initial state, which a fresh process has, so that a network trained after others in the same
+  // process is the one `bodyrec train-shape` makes.
+  std::srand(1);
   for (int t = 0; t < options.iterations; ++t) {
     crops.clear();
     labels.clear();
