@@ -61,17 +61,18 @@ std::unique_ptr<bodyrec::BodyShapeModel> shape_model(benchmark::State& state) {
   return std::make_unique<bodyrec::BodyShapeModel>(path);
 }
 
-// Arg 1: fit() as shipped (mask-net: logits averaged with the mirror image's); arg 0: mask-net on the box
-// alone, to show what the mirror costs.
+// Arg 1: fit() as shipped (mask-net: logits averaged with the mirror image's, a slit cut between the legs);
+// arg 0: mask-net on the box alone, to show what the mirror costs; arg 2: without the slit, to show its cost.
 void BM_ShapeFitPerPerson(benchmark::State& state) {
   const auto model = shape_model(state);
   if (!model) return;
-  if (state.range(0) == 0) {
+  if (state.range(0) != 1) {
     if (model->kind() != bodyrec::BodyShapeModel::Kind::kMaskNet) {
-      state.SkipWithError("the box-alone case needs a mask-net model");
+      state.SkipWithError("the box-alone and no-slit cases need a mask-net model");
       return;
     }
-    model->set_mirror_average(false);
+    if (state.range(0) == 0) model->set_mirror_average(false);
+    if (state.range(0) == 2) model->set_leg_slit(false);
   }
   const auto& images = images_640x480();
   std::vector<cv::Mat> prepared;
@@ -123,7 +124,7 @@ void BM_DetectAndLandmarkFhog(benchmark::State& state) {
   detect_and_fit(state, detector);
 }
 
-BENCHMARK(BM_ShapeFitPerPerson)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+BENCHMARK(BM_ShapeFitPerPerson)->Arg(1)->Arg(0)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 BENCHMARK(BM_DetectAndLandmarkHog)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_DetectAndLandmarkFhog)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 

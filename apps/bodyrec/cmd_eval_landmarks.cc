@@ -17,7 +17,7 @@ struct EvalLandmarksCommand {
   std::string xml, shape, per_person;
   std::optional<double> mask_threshold;
   std::vector<double> threshold_offsets;
-  bool json = false, no_mirror = false, no_correction = false;
+  bool json = false, no_mirror = false, no_correction = false, no_leg_slit = false;
 
   void run() const {
     BodyShapeModel model(shape);
@@ -25,6 +25,7 @@ struct EvalLandmarksCommand {
     if (!threshold_offsets.empty()) model.set_threshold_offsets(threshold_offsets);
     if (no_mirror) model.set_mirror_average(false);
     if (no_correction) model.set_shape_correction(false);
+    if (no_leg_slit) model.set_leg_slit(false);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
     std::vector<PersonLandmarkError> errors;
@@ -53,8 +54,9 @@ void add(CLI::App& eval) {
   sub->footer(
       "Error per person = mean distance between predicted and true landmark i; also divided by the box height\n"
       "and by the image width (the thesis's measure), and point-to-contour (distance to the true outline).\n"
-      "The model's shape correction stays on with --mask-threshold, --threshold-offsets and --no-mirror:\n"
-      "it was learnt on fits with the defaults but still lowers the error with each (docs/benchmarks.md).\n"
+      "The model's shape correction stays on with --mask-threshold, --threshold-offsets, --no-mirror and\n"
+      "--no-leg-slit: it was learnt on fits with the defaults but still lowers the error with each\n"
+      "(docs/benchmarks.md).\n"
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
   sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
@@ -68,6 +70,9 @@ void add(CLI::App& eval) {
   sub->add_flag("--no-mirror", command->no_mirror,
                 "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
                 "image's (for comparison)");
+  sub->add_flag("--no-leg-slit", command->no_leg_slit,
+                "mask-net models: trace each outline without the slit cut between the legs where the logits dip "
+                "(for comparison)");
   sub->add_flag("--no-correction", command->no_correction,
                 "mask-net models: leave out the model's linear shape correction (for comparison)");
   sub->add_option("--per-person", command->per_person,

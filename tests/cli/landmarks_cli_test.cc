@@ -116,6 +116,10 @@ TEST_F(LandmarkCommands, TrainMaskNetThenLandmark) {
                                              path("net.dat").string(), "--no-correction", "--json"});
   ASSERT_EQ(uncorrected.exit_code, 0) << uncorrected.err;
   EXPECT_NE(last_json_line(uncorrected.out)["mean_px"], last_json_line(e.out)["mean_px"]);
+  const RunResult unslit = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape",
+                                        path("net.dat").string(), "--no-leg-slit", "--json"});
+  ASSERT_EQ(unslit.exit_code, 0) << unslit.err;
+  EXPECT_EQ(last_json_line(unslit.out)["persons"], 2);
   // The commands that read a shape model take either kind.
   const RunResult r = run_bodyrec({"landmark", path("set/images/P03.png").string(), "--shape", path("net.dat").string(),
                                    "--motion", "off", "-q"});
@@ -215,6 +219,9 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--no-correction"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--no-correction applies to mask-net models only")) << r.err;
+  r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--no-leg-slit"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--no-leg-slit applies to mask-net models only")) << r.err;
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
                    path("v.xml").string()});
   EXPECT_EQ(r.exit_code, 2);

@@ -90,6 +90,11 @@ void BodyShapeModel::set_shape_correction(bool on) {
   impl_->use_correction = on;
 }
 
+void BodyShapeModel::set_leg_slit(bool on) {
+  if (!impl_->net) throw UsageError("--no-leg-slit applies to mask-net models only (this one has regression trees)");
+  impl_->net->set_leg_slit(on);
+}
+
 cv::Mat BodyShapeModel::prepare(const cv::Mat& image) const {
   const int wanted = impl_->net ? CV_8UC3 : CV_8UC1;
   if (image.type() == wanted) return image;

@@ -55,6 +55,10 @@ class BodyShapeModel {
   // Mask network only: fit() applies the model's linear shape correction (true, the default; models
   // trained before 2026-12-03 have none) or not. Throws UsageError for the trees.
   void set_shape_correction(bool on);
+  // Mask network only: before tracing each outline, fit() cuts a slit between the legs where the logits
+  // dip below the threshold + kLegSlitMargin (true, the default; leg_gap.h) or not. Throws UsageError for
+  // the trees.
+  void set_leg_slit(bool on);
 
  private:
   friend class ShapeModelAccess;

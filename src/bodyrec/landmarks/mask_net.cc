@@ -16,6 +16,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/landmarks/contour.h"
+#include "bodyrec/landmarks/leg_gap.h"
 
 namespace bodyrec {
 namespace {
@@ -205,6 +206,7 @@ struct BodyMaskNet::Impl {
   cv::Size input;
   double threshold = 0.5;
   bool mirror_average = true;
+  bool leg_slit = true;
   void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
 };
 
@@ -295,6 +297,8 @@ void BodyMaskNet::set_threshold(double logit) {
 
 void BodyMaskNet::set_mirror_average(bool on) { impl_->mirror_average = on; }
 bool BodyMaskNet::mirror_average() const { return impl_->mirror_average; }
+void BodyMaskNet::set_leg_slit(bool on) { impl_->leg_slit = on; }
+bool BodyMaskNet::leg_slit() const { return impl_->leg_slit; }
 
 cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
   CV_Assert(bgr.type() == CV_8UC3);
@@ -341,14 +345,18 @@ std::vector<std::vector<cv::Point2d>> BodyMaskNet::fit_at(const cv::Mat& bgr, co
   const cv::Size size(std::max(1, static_cast<int>(std::lround(b.width * scale))),
                       std::max(1, static_cast<int>(std::lround(b.height * scale))));
   const double sx = static_cast<double>(b.width) / size.width, sy = static_cast<double>(b.height) / size.height;
+  // Cubic rather than linear: the dip of the logits between the legs stays deeper (Penn-Fudan validation:
+  // 0.05 points less error on two validation models, docs/benchmarks.md).
   cv::Mat up;
-  cv::resize(fitting_logits(bgr, box), up, size, 0, 0, cv::INTER_LINEAR);
+  cv::resize(fitting_logits(bgr, box), up, size, 0, 0, cv::INTER_CUBIC);
   double highest = 0;
   cv::minMaxLoc(up, nullptr, &highest);
   std::vector<std::vector<cv::Point2d>> outlines;
   for (double offset : threshold_offsets) {
     // When no pixel passes the threshold, the pixels within 1 of the highest: never an empty mask.
-    const cv::Mat mask = up > std::min(impl_->threshold + offset, highest - 1.0);
+    const double threshold = std::min(impl_->threshold + offset, highest - 1.0);
+    cv::Mat mask = up > threshold;
+    if (impl_->leg_slit) cut_leg_gap(mask, up, threshold + kLegSlitMargin);
     BodyContour contour = contour_from_mask(mask, options);
     CV_Assert(contour.status == ContourStatus::kOk);
     for (auto& p : contour.points)  // pixel centres back to the box's pixels

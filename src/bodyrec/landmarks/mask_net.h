@@ -56,9 +56,14 @@ class BodyMaskNet {
   // A fitting option, not saved with the model: on after loading or training.
   void set_mirror_average(bool on);
   bool mirror_average() const;
+  // A fitting option, not saved with the model: cut a slit between the legs where the logits dip
+  // (leg_gap.h) before tracing each outline; on after loading or training.
+  void set_leg_slit(bool on);
+  bool leg_slit() const;
   // `landmarks` points on the outline of the body mask's largest component, numbered as contour_from_mask.
-  // The mask is fitting_logits() above the threshold, upsampled to the box but at most twice the network's
-  // rows tall (the outline is scaled to the box); when no pixel passes, the pixels within 1 of the highest.
+  // The mask is fitting_logits() (upsampled, cubic, to the box but at most twice the network's rows tall;
+  // the outline is scaled to the box) above the threshold, with the slit between the legs when
+  // leg_slit(); when no pixel passes, the pixels within 1 of the highest.
   std::vector<cv::Point2d> fit(const cv::Mat& bgr, const Box& box, int landmarks) const;
   // The same outline at several thresholds (threshold() + each offset) from one network batch: one
   // outline per offset, in order. REQUIRES: offsets not empty.

@@ -320,6 +320,34 @@ TEST_F(TrainedMaskNet, ShapeCorrectionFromTrainingMovesTheAveragedPoints) {
                                 "--no-correction applies to mask-net models only"));
 }
 
+TEST_F(TrainedMaskNet, LegSlitIsAFittingOptionOnByDefault) {
+  testing::TempDir dir;
+  BodyShapeModel model(saved(dir));
+  const BodyMaskNet& net = *ShapeModelAccess::impl(model).net;
+  EXPECT_TRUE(net.leg_slit());
+  // Off: each outline is the thresholded mask's own. The slit only ever adds the way up between the legs
+  // and back, so the outline with it is at least as long (400 points: the polygon follows the outline).
+  const auto& image = train_->images[4];
+  const cv::Mat prepared = model.prepare(image.image);
+  const Box box = image.people[0].box;
+  const auto length = [](const std::vector<cv::Point2d>& p) {
+    double sum = 0;
+    for (size_t i = 0; i < p.size(); ++i) sum += cv::norm(p[(i + 1) % p.size()] - p[i]);
+    return sum;
+  };
+  const double with_slit = length(net.fit_at(prepared, box, 400, {0.0}).front());
+  model.set_leg_slit(false);
+  EXPECT_FALSE(net.leg_slit());
+  EXPECT_GE(with_slit + 1.0, length(net.fit_at(prepared, box, 400, {0.0}).front()));
+  // The loaded model has it on again (an option, not saved).
+  EXPECT_TRUE(ShapeModelAccess::impl(BodyShapeModel(saved(dir))).net->leg_slit());
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] {
+                                  BodyShapeModel trees = ShapeModelAccess::make(dlib::shape_predictor());
+                                  trees.set_leg_slit(false);
+                                }),
+                                "--no-leg-slit applies to mask-net models only"));
+}
+
 TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
   testing::TempDir dir;
   const std::string good = (dir / "good.dat").string();
