@@ -49,6 +49,8 @@ std::vector<double> cumulative_arc(const std::vector<cv::Point2d>& closed) {
 
 }  // namespace
 
+double closed_length(const std::vector<cv::Point2d>& closed) { return cumulative_arc(closed).back(); }
+
 std::vector<cv::Point2d> points_at_arc(const std::vector<cv::Point2d>& closed, const std::vector<double>& at) {
   std::vector<cv::Point2d> out;
   if (closed.empty()) return out;

@@ -42,6 +42,9 @@ std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed,
 // closed[0], each taken modulo 1 (-0.1 is 0.9). Empty when closed is.
 std::vector<cv::Point2d> points_at_arc(const std::vector<cv::Point2d>& closed, const std::vector<double>& at);
 
+// The length of the closed polyline `closed` (back to its first point); 0 when it has fewer than 2 points.
+double closed_length(const std::vector<cv::Point2d>& closed);
+
 // Twice the signed area (shoelace) in image coordinates (y down): > 0 when clockwise on screen.
 double signed_area2(const std::vector<cv::Point2d>& polygon);
 

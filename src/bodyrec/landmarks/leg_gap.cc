@@ -13,26 +13,21 @@ int cut_leg_gap(cv::Mat& mask, const cv::Mat& logits, double slit_logit) {
   const int h = mask.rows, w = mask.cols, top = h / 2;
   if (h < 2 || w < 3) return 0;
   constexpr double kUnreachable = std::numeric_limits<double>::infinity();
-  // Columns the valley may use in each row: strictly between the row's outermost body pixels.
-  std::vector<int> left(h, w), right(h, -1);
-  for (int r = top; r < h; ++r) {
-    const uchar* m = mask.ptr<uchar>(r);
-    for (int c = 0; c < w; ++c)
-      if (m[c]) {
-        left[r] = std::min(left[r], c);
-        right[r] = c;
-      }
-  }
   // Least summed logit of a path from row `top` to each pixel (dynamic programming, row by row; rows
-  // below `top` only, stored from row 0 = `top`).
+  // below `top` only, stored from row 0 = `top`), using only the columns strictly between the row's
+  // outermost body pixels.
   const int rows = h - top;
   std::vector<double> cost(static_cast<size_t>(rows) * w, kUnreachable);
   std::vector<int> from(static_cast<size_t>(rows) * w, -1);
   for (int i = 0; i < rows; ++i) {
+    const uchar* m = mask.ptr<uchar>(top + i);
+    const int left = static_cast<int>(std::find_if(m, m + w, [](uchar v) { return v != 0; }) - m);
+    int right = w - 1;
+    while (right > left && !m[right]) --right;
     const float* l = logits.ptr<float>(top + i);
     double* here = &cost[static_cast<size_t>(i) * w];
     int* back = &from[static_cast<size_t>(i) * w];
-    for (int c = left[top + i] + 1; c < right[top + i]; ++c) {
+    for (int c = left + 1; c < right; ++c) {
       if (i == 0) {
         here[c] = l[c];
         continue;
@@ -48,15 +43,14 @@ int cut_leg_gap(cv::Mat& mask, const cv::Mat& logits, double slit_logit) {
     }
   }
   // The valley ends in the lowest row it reaches, at that row's cheapest pixel.
-  int last = rows - 1;
+  int last = rows - 1, end = 0;
   for (; last >= 0; --last) {
     const double* row = &cost[static_cast<size_t>(last) * w];
-    if (*std::min_element(row, row + w) < kUnreachable) break;
+    end = static_cast<int>(std::min_element(row, row + w) - row);
+    if (row[end] < kUnreachable) break;
   }
   if (last < 0) return 0;
   const int bottom = top + last;
-  const double* row = &cost[static_cast<size_t>(last) * w];
-  int end = static_cast<int>(std::min_element(row, row + w) - row);
   std::vector<int> valley(h, -1);
   for (int r = bottom, c = end; r >= top; c = from[static_cast<size_t>(r - top) * w + c], --r) valley[r] = c;
   int first = bottom + 1;  // the slit's top row

@@ -40,12 +40,7 @@ TEST(LegGap, CutsASlitUpTheValleyAsFarAsItStaysBelowTheSlitLogit) {
   o.min_height = 1;
   o.max_border_fraction = 1.0;
   o.landmarks = 400;
-  const auto length = [&](const cv::Mat& mask) {
-    const auto points = contour_from_mask(mask, o).points;
-    double sum = 0;
-    for (size_t i = 0; i < points.size(); ++i) sum += cv::norm(points[(i + 1) % points.size()] - points[i]);
-    return sum;
-  };
+  const auto length = [&](const cv::Mat& mask) { return closed_length(contour_from_mask(mask, o).points); };
   EXPECT_NEAR(length(p.mask) - length(before), 2 * 27, 6);
 }
 

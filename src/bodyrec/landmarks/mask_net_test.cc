@@ -330,15 +330,10 @@ TEST_F(TrainedMaskNet, LegSlitIsAFittingOptionOnByDefault) {
   const auto& image = train_->images[4];
   const cv::Mat prepared = model.prepare(image.image);
   const Box box = image.people[0].box;
-  const auto length = [](const std::vector<cv::Point2d>& p) {
-    double sum = 0;
-    for (size_t i = 0; i < p.size(); ++i) sum += cv::norm(p[(i + 1) % p.size()] - p[i]);
-    return sum;
-  };
-  const double with_slit = length(net.fit_at(prepared, box, 400, {0.0}).front());
+  const double with_slit = closed_length(net.fit_at(prepared, box, 400, {0.0}).front());
   model.set_leg_slit(false);
   EXPECT_FALSE(net.leg_slit());
-  EXPECT_GE(with_slit + 1.0, length(net.fit_at(prepared, box, 400, {0.0}).front()));
+  EXPECT_GE(with_slit + 1.0, closed_length(net.fit_at(prepared, box, 400, {0.0}).front()));
   // The loaded model has it on again (an option, not saved).
   EXPECT_TRUE(ShapeModelAccess::impl(BodyShapeModel(saved(dir))).net->leg_slit());
   EXPECT_TRUE(testing::contains(testing::usage_error([&] {
