@@ -50,7 +50,7 @@ using RunNet = dlib::loss_binary_log_per_pixel<unet<dlib::affine>>;
 // Raw bytes at the start of every model file (before dlib's serialisation), and the format version.
 constexpr char kMagic[] = "BODYREC-MASKNET\n";
 constexpr size_t kMagicBytes = sizeof(kMagic) - 1;
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: a count of networks before them (1: one network)
 
 dlib::matrix<dlib::rgb_pixel> to_dlib(const cv::Mat& bgr) {
   dlib::matrix<dlib::rgb_pixel> m;
@@ -198,16 +198,37 @@ struct PixelBox {  // a box rounded to whole pixels, at least 1x1
         height(std::max(1, static_cast<int>(std::lround(b.height)))) {}
 };
 
+struct Member {
+  mutable RunNet net;                  // what is saved (dlib's serialisation); its forward pass keeps buffers
+  std::unique_ptr<OpenCvUnet> runner;  // what runs (built from `net`; keeps buffers between calls)
+  void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
+};
+
+// The mean of several networks' logits of the same batch.
+std::vector<cv::Mat> mean_forward(const std::vector<Member>& members, const std::vector<cv::Mat>& crops) {
+  if (members.size() == 1) return members.front().runner->forward(crops);
+  // Side by side, one thread per network: OpenCV runs the layers of each pass serially then (nested
+  // parallel loops are not split), and these small layers gain nothing from being split anyway.
+  std::vector<std::vector<cv::Mat>> each(members.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(members.size())), [&](const cv::Range& range) {
+    for (size_t i = static_cast<size_t>(range.start); i < static_cast<size_t>(range.end); ++i)
+      each[i] = members[i].runner->forward(crops);
+  });
+  std::vector<cv::Mat> mean = each.front();
+  for (size_t i = 1; i < each.size(); ++i)
+    for (size_t n = 0; n < mean.size(); ++n) mean[n] += each[i][n];
+  for (cv::Mat& m : mean) m /= static_cast<double>(members.size());
+  return mean;
+}
+
 }  // namespace
 
 struct BodyMaskNet::Impl {
-  mutable RunNet net;                  // what is saved (dlib's serialisation); its forward pass keeps buffers
-  std::unique_ptr<OpenCvUnet> runner;  // what runs (built from `net`; keeps buffers between calls)
+  std::vector<Member> members;  // one network, or several whose logits are averaged
   cv::Size input;
   double threshold = 0.5;
   bool mirror_average = true;
   bool leg_slit = true;
-  void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
 };
 
 void MaskNetTrainOptions::check() const {
@@ -219,6 +240,8 @@ void MaskNetTrainOptions::check() const {
   if (!(weight_decay >= 0 && weight_decay < 1)) throw UsageError("--weight-decay must be in [0, 1)");
   if (!std::isfinite(threshold)) throw UsageError("--mask-threshold must be a finite logit");
   if (!(box_jitter >= 0 && box_jitter <= 0.5)) throw UsageError("--box-jitter must be in [0, 0.5]");
+  if (networks < 1 || networks > kMaxNetworks)
+    throw UsageError("--networks must be in [1, " + std::to_string(kMaxNetworks) + "]");
 }
 
 cv::Mat crop_box(const cv::Mat& image, const Box& box, cv::Size size) {
@@ -260,19 +283,24 @@ BodyMaskNet::BodyMaskNet(std::istream& in, const std::string& name) : BodyMaskNe
   if (!recognise(in)) throw InputError(name + ": not a bodyrec mask-net model");
   in.ignore(kMagicBytes);
   try {
-    int version = 0, width = 0, height = 0;
+    int version = 0, width = 0, height = 0, networks = 1;
     dlib::deserialize(version, in);
-    if (version != kVersion)
-      throw InputError(name + ": mask-net model version " + std::to_string(version) + ", this build reads " +
+    if (version < 1 || version > kVersion)
+      throw InputError(name + ": mask-net model version " + std::to_string(version) + ", this build reads 1 to " +
                        std::to_string(kVersion));
     dlib::deserialize(width, in);
     dlib::deserialize(height, in);
     dlib::deserialize(impl_->threshold, in);
-    dlib::deserialize(impl_->net, in);
+    if (version >= 2) dlib::deserialize(networks, in);
+    if (networks < 1 || networks > kMaxNetworks)
+      throw InputError(name + ": mask-net model has " + std::to_string(networks) + " networks (1 to " +
+                       std::to_string(kMaxNetworks) + " expected)");
+    impl_->members.resize(static_cast<size_t>(networks));
+    for (Member& m : impl_->members) dlib::deserialize(m.net, in);
     if (width < 8 || height < 8 || width % 8 || height % 8 || !std::isfinite(impl_->threshold))
       throw InputError(name + ": mask-net model has an invalid input size or threshold");
     impl_->input = cv::Size(width, height);
-    impl_->build_runner();
+    for (Member& m : impl_->members) m.build_runner();
   } catch (const dlib::serialization_error& e) {
     std::string why = e.what();
     throw InputError(name + ": truncated or corrupt mask-net model (" + why.substr(0, why.find('\n')) + ")");
@@ -285,10 +313,12 @@ void BodyMaskNet::save(std::ostream& out) const {
   dlib::serialize(impl_->input.width, out);
   dlib::serialize(impl_->input.height, out);
   dlib::serialize(impl_->threshold, out);
-  dlib::serialize(impl_->net, out);
+  dlib::serialize(static_cast<int>(impl_->members.size()), out);
+  for (const Member& m : impl_->members) dlib::serialize(m.net, out);
 }
 
 cv::Size BodyMaskNet::input_size() const { return impl_->input; }
+int BodyMaskNet::networks() const { return static_cast<int>(impl_->members.size()); }
 double BodyMaskNet::threshold() const { return impl_->threshold; }
 void BodyMaskNet::set_threshold(double logit) {
   CV_Assert(std::isfinite(logit));
@@ -302,7 +332,7 @@ bool BodyMaskNet::leg_slit() const { return impl_->leg_slit; }
 
 cv::Mat BodyMaskNet::logits(const cv::Mat& bgr, const Box& box) const {
   CV_Assert(bgr.type() == CV_8UC3);
-  return impl_->runner->forward({crop_box(bgr, box, impl_->input)}).front();
+  return mean_forward(impl_->members, {crop_box(bgr, box, impl_->input)}).front();
 }
 
 cv::Mat BodyMaskNet::fitting_logits(const cv::Mat& bgr, const Box& box) const {
@@ -312,18 +342,21 @@ cv::Mat BodyMaskNet::fitting_logits(const cv::Mat& bgr, const Box& box) const {
   cv::Mat mirrored;
   cv::flip(crop, mirrored, 1);
   // One batch of two: cheaper than two passes of these small layers.
-  std::vector<cv::Mat> out = impl_->runner->forward({crop, mirrored});
+  std::vector<cv::Mat> out = mean_forward(impl_->members, {crop, mirrored});
   cv::flip(out[1], out[1], 1);
   return 0.5f * (out[0] + out[1]);
 }
 
 cv::Mat BodyMaskNet::reference_logits(const cv::Mat& bgr, const Box& box) const {
   CV_Assert(bgr.type() == CV_8UC3);
-  const dlib::matrix<float> out = impl_->net(to_dlib(crop_box(bgr, box, impl_->input)));
-  cv::Mat result(impl_->input, CV_32F);
-  for (int r = 0; r < result.rows; ++r)
-    for (int c = 0; c < result.cols; ++c) result.at<float>(r, c) = out(r, c);
-  return result;
+  const dlib::matrix<dlib::rgb_pixel> crop = to_dlib(crop_box(bgr, box, impl_->input));
+  cv::Mat result = cv::Mat::zeros(impl_->input, CV_32F);
+  for (const Member& m : impl_->members) {
+    const dlib::matrix<float> out = m.net(crop);
+    for (int r = 0; r < result.rows; ++r)
+      for (int c = 0; c < result.cols; ++c) result.at<float>(r, c) += out(r, c);
+  }
+  return result / static_cast<double>(impl_->members.size());
 }
 
 std::vector<cv::Point2d> BodyMaskNet::fit(const cv::Mat& bgr, const Box& box, int landmarks) const {
@@ -351,18 +384,21 @@ std::vector<std::vector<cv::Point2d>> BodyMaskNet::fit_at(const cv::Mat& bgr, co
   cv::resize(fitting_logits(bgr, box), up, size, 0, 0, cv::INTER_CUBIC);
   double highest = 0;
   cv::minMaxLoc(up, nullptr, &highest);
-  std::vector<std::vector<cv::Point2d>> outlines;
-  for (double offset : threshold_offsets) {
-    // When no pixel passes the threshold, the pixels within 1 of the highest: never an empty mask.
-    const double threshold = std::min(impl_->threshold + offset, highest - 1.0);
-    cv::Mat mask = up > threshold;
-    if (impl_->leg_slit) cut_leg_gap(mask, up, threshold + kLegSlitMargin);
-    BodyContour contour = contour_from_mask(mask, options);
-    CV_Assert(contour.status == ContourStatus::kOk);
-    for (auto& p : contour.points)  // pixel centres back to the box's pixels
-      p = cv::Point2d(b.x + (p.x + 0.5) * sx - 0.5, b.y + (p.y + 0.5) * sy - 0.5);
-    outlines.push_back(std::move(contour.points));
-  }
+  // The outlines are independent: traced side by side (OpenCV's threads).
+  std::vector<std::vector<cv::Point2d>> outlines(threshold_offsets.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(threshold_offsets.size())), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) {
+      // When no pixel passes the threshold, the pixels within 1 of the highest: never an empty mask.
+      const double threshold = std::min(impl_->threshold + threshold_offsets[static_cast<size_t>(i)], highest - 1.0);
+      cv::Mat mask = up > threshold;
+      if (impl_->leg_slit) cut_leg_gap(mask, up, threshold + kLegSlitMargin);
+      BodyContour contour = contour_from_mask(mask, options);
+      CV_Assert(contour.status == ContourStatus::kOk);
+      for (auto& p : contour.points)  // pixel centres back to the box's pixels
+        p = cv::Point2d(b.x + (p.x + 0.5) * sx - 0.5, b.y + (p.y + 0.5) * sy - 0.5);
+      outlines[static_cast<size_t>(i)] = std::move(contour.points);
+    }
+  });
   return outlines;
 }
 
@@ -380,30 +416,12 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   if (samples.empty()) throw ProcessingError("no person with landmarks to train the mask network on");
 
   const cv::Size size(options.input_width, options.input_height);
-  std::mt19937 rng(options.seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const double j = options.box_jitter;
-
-  TrainNet net;
-  dlib::dnn_trainer<TrainNet, dlib::adam> trainer(net, dlib::adam(static_cast<float>(options.weight_decay), 0.9f, 0.999f));
-  trainer.set_mini_batch_size(static_cast<unsigned long>(options.batch));
-  dlib::matrix<double> schedule(1, options.iterations);
-  const int warm_up = std::max(1, options.iterations / 10);
-  for (int t = 0; t < options.iterations; ++t) {
-    const double f = t < warm_up ? (t + 1.0) / warm_up
-                                 : 0.5 * (1 + std::cos(M_PI * (t - warm_up) / std::max(1, options.iterations - warm_up)));
-    schedule(0, t) = options.learning_rate * f + 1e-5;
-  }
-  trainer.set_learning_rate_schedule(schedule);
-
-  std::vector<dlib::matrix<dlib::rgb_pixel>> crops;
-  std::vector<dlib::matrix<float>> labels;
-  // dlib sets the layers up on the first step, drawing their initial weights from std::rand(): from the C
-  // library's initial state, which a fresh process has, so that a network trained after others in the same
-  // process is the one `bodyrec train-shape` makes.
-  std::srand(1);
-  for (int t = 0; t < options.iterations; ++t) {
+  // One mini-batch of augmented crops and their target masks, drawn with `rng`.
+  const auto draw = [&](std::mt19937& rng, std::vector<dlib::matrix<dlib::rgb_pixel>>& crops,
+                        std::vector<dlib::matrix<float>>& labels) {
     crops.clear();
     labels.clear();
     for (int k = 0; k < options.batch; ++k) {
@@ -432,18 +450,61 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
       crops.push_back(to_dlib(crop));
       labels.push_back(std::move(label));
     }
-    trainer.train_one_step(crops, labels);
-    if (options.verbose && (t + 1) % std::max(1, options.iterations / 10) == 0)
-      std::fprintf(stderr, "mask net: iteration %d of %d, loss %.4f\n", t + 1, options.iterations,
-                   trainer.get_average_loss());
+  };
+
+  dlib::matrix<double> schedule(1, options.iterations);
+  const int warm_up = std::max(1, options.iterations / 10);
+  for (int t = 0; t < options.iterations; ++t) {
+    const double f = t < warm_up ? (t + 1.0) / warm_up
+                                 : 0.5 * (1 + std::cos(M_PI * (t - warm_up) / std::max(1, options.iterations - warm_up)));
+    schedule(0, t) = options.learning_rate * f + 1e-5;
   }
-  trainer.get_net();  // waits for the trainer's thread
-  net.clean();
+  // Network k draws its crops with seed + k. Each dlib trainer computes on its own thread, so the
+  // networks train side by side while this thread draws their crops.
+  struct Learner {
+    std::mt19937 rng;
+    TrainNet net;
+    dlib::dnn_trainer<TrainNet, dlib::adam> trainer;
+    Learner(unsigned seed, float weight_decay)
+        : rng(seed), trainer(net, dlib::adam(weight_decay, 0.9f, 0.999f)) {}
+  };
+  std::vector<std::unique_ptr<Learner>> learners;  // the trainers hold references to the networks
+  for (int k = 0; k < options.networks; ++k) {
+    learners.push_back(std::make_unique<Learner>(options.seed + static_cast<unsigned>(k),
+                                                 static_cast<float>(options.weight_decay)));
+    learners.back()->trainer.set_mini_batch_size(static_cast<unsigned long>(options.batch));
+    learners.back()->trainer.set_learning_rate_schedule(schedule);
+  }
+
+  std::vector<dlib::matrix<dlib::rgb_pixel>> crops;
+  std::vector<dlib::matrix<float>> labels;
+  // dlib sets the layers up on the first step, drawing their initial weights from std::rand(): from the C
+  // library's initial state, which a fresh process has, so that a network trained after others in the same
+  // process is the one `bodyrec train-shape` makes. The networks are set up one after another (the first
+  // step of each waited for), so that each starts from the same weights in every run.
+  std::srand(1);
+  for (int t = 0; t < options.iterations; ++t) {
+    for (size_t k = 0; k < learners.size(); ++k) {
+      Learner& l = *learners[k];
+      draw(l.rng, crops, labels);
+      l.trainer.train_one_step(crops, labels);
+      if (t == 0) l.trainer.get_net();  // waits for the trainer's thread
+      if (options.verbose && (t + 1) % std::max(1, options.iterations / 10) == 0)
+        std::fprintf(stderr, "mask net %zu: iteration %d of %d, loss %.4f\n", k + 1, t + 1, options.iterations,
+                     l.trainer.get_average_loss());
+    }
+  }
   BodyMaskNet model;
-  model.impl_->net = net;
+  for (const auto& l : learners) {
+    l->trainer.get_net();  // waits for the trainer's thread
+    l->net.clean();
+    Member m;
+    m.net = l->net;
+    m.build_runner();
+    model.impl_->members.push_back(std::move(m));
+  }
   model.impl_->input = size;
   model.impl_->threshold = options.threshold;
-  model.impl_->build_runner();
   return model;
 }
 

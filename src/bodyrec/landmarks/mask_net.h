@@ -18,6 +18,8 @@
 
 namespace bodyrec {
 
+constexpr int kMaxNetworks = 8;  // networks averaged in one model
+
 struct MaskNetTrainOptions {
   int input_width = 24;            // the box is resampled to input_width x input_height (multiples of 8)
   int input_height = 72;
@@ -27,7 +29,8 @@ struct MaskNetTrainOptions {
   double weight_decay = 0;         // Adam's L2 penalty on the weights (5e-4: docs/benchmarks.md)
   double threshold = 0.5;          // logit above which a pixel is body (stored in the model)
   double box_jitter = 0.03;        // std-dev of the box's shift (x; half of it in y) and log-size, per box side
-  unsigned seed = 0;               // augmentation draws
+  unsigned seed = 0;               // augmentation draws (network k: seed + k)
+  int networks = 1;                // trained side by side; fitting averages their logits
   bool verbose = false;            // loss every 10 % of the run on stderr
   void check() const;              // throws UsageError naming the option
 };
@@ -46,6 +49,7 @@ class BodyMaskNet {
   void save(std::ostream& out) const;
 
   // The network's per-pixel body logits of `box` in `bgr` (CV_8UC3): input_height x input_width, CV_32F.
+  // A model of several networks gives the mean of theirs; they run side by side, one OpenCV thread each.
   cv::Mat logits(const cv::Mat& bgr, const Box& box) const;
   // The same from dlib's own forward pass (slower): the check that the network OpenCV runs is dlib's.
   cv::Mat reference_logits(const cv::Mat& bgr, const Box& box) const;
@@ -71,6 +75,7 @@ class BodyMaskNet {
                                                const std::vector<double>& threshold_offsets) const;
 
   cv::Size input_size() const;
+  int networks() const;  // 1 to kMaxNetworks
   double threshold() const;
   void set_threshold(double logit);  // REQUIRES: finite
 

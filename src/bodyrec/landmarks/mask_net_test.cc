@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include <dlib/serialize.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
@@ -25,6 +26,25 @@ namespace {
 
 LandmarkDataset drawn_people(int count, uint64_t first_seed) {
   return testing::silhouette_dataset(count, first_seed, 60, cv::Size(120, 150), 120, "drawn");
+}
+
+std::string model_bytes(const BodyMaskNet& net) {
+  std::ostringstream out;
+  net.save(out);
+  return out.str();
+}
+
+// The bytes of a mask-net model file before its networks: the magic line, the format version, the input
+// size and the threshold, then (version 2 on) the count of networks.
+std::string model_header(const BodyMaskNet& net, int version, int networks) {
+  std::ostringstream out;
+  out << "BODYREC-MASKNET\n";
+  dlib::serialize(version, out);
+  dlib::serialize(net.input_size().width, out);
+  dlib::serialize(net.input_size().height, out);
+  dlib::serialize(net.threshold(), out);
+  if (version >= 2) dlib::serialize(networks, out);
+  return out.str();
 }
 
 ShapeTrainOptions small_net(int iterations) {
@@ -73,6 +93,11 @@ TEST(MaskNet, OptionsAreChecked) {
   EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
   o.weight_decay = std::nan("");
   EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
+  for (int networks : {0, kMaxNetworks + 1}) {
+    o = MaskNetTrainOptions();
+    o.networks = networks;
+    EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--networks"));
+  }
   EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
 }
 
@@ -80,16 +105,29 @@ TEST(MaskNet, TrainingIsReproducibleInOneProcess) {
   // The initial weights do not depend on what the process trained before (dlib draws them from std::rand).
   const LandmarkDataset data = drawn_people(6, 300);
   MaskNetTrainOptions o = small_net(4).net;
-  const auto bytes = [](const BodyMaskNet& net) {
-    std::ostringstream out;
-    net.save(out);
-    return out.str();
-  };
-  const std::string first = bytes(train_body_mask_net(data, o));
+  const std::string first = model_bytes(train_body_mask_net(data, o));
   std::rand();
-  EXPECT_TRUE(bytes(train_body_mask_net(data, o)) == first);  // (EXPECT_EQ would print the bytes)
+  EXPECT_TRUE(model_bytes(train_body_mask_net(data, o)) == first);  // (EXPECT_EQ would print the bytes)
   o.seed = 1;  // other augmentation draws
-  EXPECT_TRUE(bytes(train_body_mask_net(data, o)) != first);
+  EXPECT_TRUE(model_bytes(train_body_mask_net(data, o)) != first);
+}
+
+TEST(MaskNet, NetworksTrainSideBySideReproducibly) {
+  const LandmarkDataset data = drawn_people(6, 300);
+  MaskNetTrainOptions o = small_net(4).net;
+  const BodyMaskNet one = train_body_mask_net(data, o);
+  o.networks = 2;
+  const BodyMaskNet pair = train_body_mask_net(data, o);
+  EXPECT_EQ(one.networks(), 1);
+  ASSERT_EQ(pair.networks(), 2);
+  const std::string single = model_bytes(one), both = model_bytes(pair);
+  // Each trainer has its own thread, yet the weights are the same in every run.
+  EXPECT_TRUE(model_bytes(train_body_mask_net(data, o)) == both);
+  // The first network is the single network of the same seed, the second another.
+  const std::string first = single.substr(model_header(one, 2, 1).size());
+  ASSERT_EQ(both.substr(0, model_header(pair, 2, 2).size()), model_header(pair, 2, 2));
+  EXPECT_TRUE(both.substr(model_header(pair, 2, 2).size(), first.size()) == first);
+  EXPECT_TRUE(both.substr(model_header(pair, 2, 2).size() + first.size()) != first);
 }
 
 // One network trained once for the tests below (about 30 s in Release); tests/CMakeLists.txt runs the suite
@@ -386,6 +424,39 @@ TEST_F(TrainedMaskNet, BrokenModelFilesNameTheFile) {
   testing::write_text(dir / "magic.dat", bytes.substr(0, 16));
   EXPECT_TRUE(testing::contains(testing::input_error([&] { BodyShapeModel m((dir / "magic.dat").string()); }),
                                 "magic.dat"));
+}
+
+TEST_F(TrainedMaskNet, ModelFilesCountTheirNetworksAndFittingAveragesThem) {
+  const BodyMaskNet& net = *ShapeModelAccess::impl(*model_).net;
+  const std::string bytes = model_bytes(net);
+  ASSERT_EQ(bytes.substr(0, model_header(net, 2, 1).size()), model_header(net, 2, 1));
+  const std::string weights = bytes.substr(model_header(net, 2, 1).size());
+  const auto load = [](const std::string& file, const std::string& name) {
+    std::istringstream in(file);
+    return BodyMaskNet(in, name);
+  };
+  const auto& image = train_->images[2];
+  const Box box = image.people[0].box;
+  const cv::Mat logits = net.logits(image.image, box), reference = net.reference_logits(image.image, box);
+  // Version 1 (2026-12-01 to 2026-12-05) had one network and no count.
+  const BodyMaskNet old = load(model_header(net, 1, 1) + weights, "v1.dat");
+  EXPECT_EQ(old.networks(), 1);
+  EXPECT_EQ(cv::norm(old.logits(image.image, box), logits, cv::NORM_INF), 0.0);
+  // The same network twice: the mean of two equal logits is each (run side by side, and in dlib).
+  const BodyMaskNet twice = load(model_header(net, 2, 2) + weights + weights, "twice.dat");
+  EXPECT_EQ(twice.networks(), 2);
+  EXPECT_EQ(cv::norm(twice.logits(image.image, box), logits, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(twice.fitting_logits(image.image, box), net.fitting_logits(image.image, box), cv::NORM_INF), 0.0);
+  EXPECT_LT(cv::norm(twice.reference_logits(image.image, box), reference, cv::NORM_INF), 1e-6);
+  EXPECT_EQ(twice.fit(image.image, box, 60), net.fit(image.image, box, 60));
+  // A count out of range, and a file that ends in the second network.
+  for (int count : {0, kMaxNetworks + 1}) {
+    const std::string why = testing::input_error([&] { load(model_header(net, 2, count) + weights, "count.dat"); });
+    EXPECT_TRUE(testing::contains(why, "count.dat: mask-net model has " + std::to_string(count) + " networks")) << why;
+  }
+  const std::string cut = testing::input_error(
+      [&] { load(model_header(net, 2, 2) + weights + weights.substr(0, weights.size() / 2), "cut.dat"); });
+  EXPECT_TRUE(testing::contains(cut, "cut.dat: truncated or corrupt")) << cut;
 }
 
 TEST(MaskNet, RecogniseLeavesTheStreamWhereItWas) {
