@@ -198,26 +198,39 @@ struct PixelBox {  // a box rounded to whole pixels, at least 1x1
         height(std::max(1, static_cast<int>(std::lround(b.height)))) {}
 };
 
+// Crops fitting passes at once (the box and its mirror image).
+constexpr size_t kMaxCrops = 2;
+
 struct Member {
-  mutable RunNet net;                  // what is saved (dlib's serialisation); its forward pass keeps buffers
-  std::unique_ptr<OpenCvUnet> runner;  // what runs (built from `net`; keeps buffers between calls)
-  void build_runner() { runner = std::make_unique<OpenCvUnet>(net); }
+  Member() = default;
+  Member(Member&&) = default;  // not copyable (so that vectors of them move)
+  Member& operator=(Member&&) = default;
+  mutable RunNet net;  // what is saved (dlib's serialisation); its forward pass keeps buffers
+  // What runs (built from `net`), one per crop so that the crops can run side by side: an OpenCV network
+  // keeps buffers between calls and is not thread-safe.
+  std::vector<std::unique_ptr<OpenCvUnet>> runners;
+  void build_runners() {
+    runners.clear();
+    for (size_t i = 0; i < kMaxCrops; ++i) runners.push_back(std::make_unique<OpenCvUnet>(net));
+  }
 };
 
-// The mean of several networks' logits of the same batch.
+// Each crop's logits, the mean over the networks. Every (network, crop) pass runs on its own, side by
+// side on OpenCV's threads: one pass of these small layers gains little from being split across threads
+// (OpenCV then runs its layers serially: nested parallel loops are not split), two passes nearly twice.
 std::vector<cv::Mat> mean_forward(const std::vector<Member>& members, const std::vector<cv::Mat>& crops) {
-  if (members.size() == 1) return members.front().runner->forward(crops);
-  // Side by side, one thread per network: OpenCV runs the layers of each pass serially then (nested
-  // parallel loops are not split), and these small layers gain nothing from being split anyway.
-  std::vector<std::vector<cv::Mat>> each(members.size());
-  cv::parallel_for_(cv::Range(0, static_cast<int>(members.size())), [&](const cv::Range& range) {
+  CV_Assert(!crops.empty() && crops.size() <= kMaxCrops);
+  const size_t n = crops.size();
+  if (members.size() * n == 1) return members.front().runners.front()->forward(crops);
+  std::vector<cv::Mat> each(members.size() * n);
+  cv::parallel_for_(cv::Range(0, static_cast<int>(each.size())), [&](const cv::Range& range) {
     for (size_t i = static_cast<size_t>(range.start); i < static_cast<size_t>(range.end); ++i)
-      each[i] = members[i].runner->forward(crops);
+      each[i] = members[i / n].runners[i % n]->forward({crops[i % n]}).front();
   });
-  std::vector<cv::Mat> mean = each.front();
-  for (size_t i = 1; i < each.size(); ++i)
-    for (size_t n = 0; n < mean.size(); ++n) mean[n] += each[i][n];
-  for (cv::Mat& m : mean) m /= static_cast<double>(members.size());
+  std::vector<cv::Mat> mean(each.begin(), each.begin() + static_cast<std::ptrdiff_t>(n));
+  for (size_t i = n; i < each.size(); ++i) mean[i % n] += each[i];
+  if (members.size() > 1)
+    for (cv::Mat& m : mean) m /= static_cast<double>(members.size());
   return mean;
 }
 
@@ -300,7 +313,7 @@ BodyMaskNet::BodyMaskNet(std::istream& in, const std::string& name) : BodyMaskNe
     if (width < 8 || height < 8 || width % 8 || height % 8 || !std::isfinite(impl_->threshold))
       throw InputError(name + ": mask-net model has an invalid input size or threshold");
     impl_->input = cv::Size(width, height);
-    for (Member& m : impl_->members) m.build_runner();
+    for (Member& m : impl_->members) m.build_runners();
   } catch (const dlib::serialization_error& e) {
     std::string why = e.what();
     throw InputError(name + ": truncated or corrupt mask-net model (" + why.substr(0, why.find('\n')) + ")");
@@ -341,7 +354,7 @@ cv::Mat BodyMaskNet::fitting_logits(const cv::Mat& bgr, const Box& box) const {
   const cv::Mat crop = crop_box(bgr, box, impl_->input);
   cv::Mat mirrored;
   cv::flip(crop, mirrored, 1);
-  // One batch of two: cheaper than two passes of these small layers.
+  // The two crops run side by side (mean_forward).
   std::vector<cv::Mat> out = mean_forward(impl_->members, {crop, mirrored});
   cv::flip(out[1], out[1], 1);
   return 0.5f * (out[0] + out[1]);
@@ -500,7 +513,7 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
     l->net.clean();
     Member m;
     m.net = l->net;
-    m.build_runner();
+    m.build_runners();
     model.impl_->members.push_back(std::move(m));
   }
   model.impl_->input = size;
