@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <dlfcn.h>
 #include <istream>
+#include <optional>
 #include <ostream>
 #include <random>
 
@@ -233,6 +235,32 @@ std::vector<cv::Mat> mean_forward(const std::vector<Member>& members, const std:
     for (cv::Mat& m : mean) m /= static_cast<double>(members.size());
   return mean;
 }
+
+// While several dlib trainers run side by side, one per core, OpenBLAS (Debian's BLAS) must not split each of
+// their calls over every core too: that ran a pair of networks over 3.5x longer. Found through dlsym, so that
+// another BLAS library is left alone; the former setting is restored afterwards.
+class OneBlasThread {
+ public:
+  OneBlasThread() {
+    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (!set_ || !get) {
+      set_ = nullptr;
+      return;
+    }
+    before_ = get();
+    set_(1);
+  }
+  ~OneBlasThread() {
+    if (set_) set_(before_);
+  }
+  OneBlasThread(const OneBlasThread&) = delete;
+  OneBlasThread& operator=(const OneBlasThread&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int before_ = 1;
+};
 
 }  // namespace
 
@@ -496,6 +524,8 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   // process is the one `bodyrec train-shape` makes. The networks are set up one after another (the first
   // step of each waited for), so that each starts from the same weights in every run.
   std::srand(1);
+  std::optional<OneBlasThread> one_blas_thread;
+  if (learners.size() > 1) one_blas_thread.emplace();
   for (int t = 0; t < options.iterations; ++t) {
     for (size_t k = 0; k < learners.size(); ++k) {
       Learner& l = *learners[k];
