@@ -73,16 +73,6 @@ TEST(ImportCli, BrokenInputsExitWithThreeAndNameTheFile) {
   EXPECT_EQ(r.exit_code, 3);
 }
 
-TEST(ImportCli, NtuSampleGivesJsonSummary) {
-  BODYREC_REQUIRE_DATA(file, "ntu_skeleton/samples/S017C003P020R002A055.skeleton");
-  TempDir dir;
-  const RunResult r = run_bodyrec({"import", "ntu", file.string(), "--out", (dir / "rec").string(), "--json"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto j = last_json_line(r.out);
-  EXPECT_EQ(j["frames"].get<int>(), 66);
-  EXPECT_EQ(j["bodies"].get<int>(), 2);
-}
-
 TEST(GreenScreenCli, WritesOneCutoutPerVisibleBodyAndRefusesBodiesOnlyRecordings) {
   TempDir dir;
   ASSERT_EQ(run_bodyrec({"synth", "--people", "2", "--seed", "3", "--frames", "60", "--out", (dir / "rec").string(), "-q"})
