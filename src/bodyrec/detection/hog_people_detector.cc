@@ -32,6 +32,51 @@ void sort_windows(std::vector<cv::Rect>& rects, std::vector<double>& weights) {
   weights.swap(sorted_weights);
 }
 
+// The windows and SVM scores of detectMultiScale before its grouping, computed as it does (the same
+// pyramid, resizing and window placement) but collected level by level in level order. OpenCV's own
+// (4.6 and later) appends each level's windows and its scores under two separate locks, so a level
+// finishing on another thread between the two can pair scores with the wrong windows; under load,
+// two identical runs then gave one detection different scores.
+void pyramid_windows(const cv::HOGDescriptor& hog, const cv::Mat& image, double hit_threshold, cv::Size stride,
+                     cv::Size padding, double step, std::vector<cv::Rect>& found, std::vector<double>& weights) {
+  std::vector<double> scales;
+  for (double scale = 1.0; static_cast<int>(scales.size()) < hog.nlevels; scale *= step) {
+    scales.push_back(scale);
+    if (cvRound(image.cols / scale) < hog.winSize.width || cvRound(image.rows / scale) < hog.winSize.height ||
+        step <= 1) {
+      if (scales.size() > 1) scales.pop_back();  // as OpenCV: the level where the window no longer fits goes
+      break;
+    }
+  }
+  std::vector<std::vector<cv::Rect>> level_rects(scales.size());
+  std::vector<std::vector<double>> level_weights(scales.size());
+  cv::parallel_for_(cv::Range(0, static_cast<int>(scales.size())), [&](const cv::Range& range) {
+    std::vector<cv::Point> hits;
+    for (int i = range.start; i < range.end; ++i) {
+      const double scale = scales[static_cast<size_t>(i)];
+      const cv::Size size(cvRound(image.cols / scale), cvRound(image.rows / scale));
+      cv::Mat level = image;
+      if (size != image.size()) cv::resize(image, level, size, 0, 0, cv::INTER_LINEAR_EXACT);
+      hog.detect(level, hits, level_weights[static_cast<size_t>(i)], hit_threshold, stride, padding);
+      const cv::Size window(cvRound(hog.winSize.width * scale), cvRound(hog.winSize.height * scale));
+      for (const cv::Point& p : hits)
+        level_rects[static_cast<size_t>(i)].emplace_back(cvRound(p.x * scale), cvRound(p.y * scale), window.width,
+                                                          window.height);
+    }
+  });
+  // As detectMultiScale returns them: clipped to the image, the ones left empty dropped.
+  const cv::Rect inside(0, 0, image.cols, image.rows);
+  found.clear();
+  weights.clear();
+  for (size_t i = 0; i < scales.size(); ++i)
+    for (size_t j = 0; j < level_rects[i].size(); ++j) {
+      const cv::Rect r = level_rects[i][j] & inside;
+      if (r.area() <= 0) continue;
+      found.push_back(r);
+      weights.push_back(level_weights[i][j]);
+    }
+}
+
 }  // namespace
 
 void HogOptions::set_height_range(double min_height, double max_height) {
@@ -132,12 +177,10 @@ std::vector<Detection> HogPeopleDetector::search(const cv::Mat& frame, const cv:
   if (pad_x || pad_y) cv::copyMakeBorder(image, image, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
   std::vector<cv::Rect> found;
   std::vector<double> weights;
-  // Raw windows first, grouped afterwards in a fixed order: detectMultiScale collects the pyramid levels
-  // from parallel threads in varying order, and its grouping averages boxes in that order, so its own
-  // grouping gives slightly different boxes from run to run.
-  hog.detectMultiScale(image, found, weights, options_.hit_threshold,
-                        cv::Size(options_.win_stride, options_.win_stride),
-                        cv::Size(how.padding, how.padding), options_.scale, 0);
+  // Raw windows first, grouped afterwards in a fixed order: OpenCV's grouping averages boxes in the order
+  // the pyramid levels arrive, so its own grouping gave slightly different boxes from run to run.
+  pyramid_windows(hog, image, options_.hit_threshold, cv::Size(options_.win_stride, options_.win_stride),
+                  cv::Size(how.padding, how.padding), options_.scale, found, weights);
   sort_windows(found, weights);
   if (options_.group_threshold > 0) hog.groupRectangles(found, weights, options_.group_threshold, 0.2);
   std::vector<Detection> out;

@@ -1,6 +1,8 @@
 #include "bodyrec/detection/hog_people_detector.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <tuple>
 
 #include <gtest/gtest.h>
 #include <opencv2/videoio.hpp>
@@ -83,6 +85,41 @@ TEST(HogPeopleDetector, DetectNearFindsThePeopleTheFullSearchFoundAndNothingElse
   EXPECT_TRUE(detector.detect_near(frame, {}).empty());
   // Degenerate and off-frame boxes are skipped, not searched.
   EXPECT_TRUE(detector.detect_near(frame, {Box(0, 0, 0, 0), Box(5000, 5000, 40, 80)}).empty());
+}
+
+// Our pyramid (level by level, so that each score stays with its window) gives what OpenCV's
+// detectMultiScale gives when it runs on one thread, where its race cannot pair them wrongly.
+TEST(HogPeopleDetector, RawWindowsAreOpenCvsWithTheirOwnScores) {
+  if (!std::filesystem::exists(testing::vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  cv::VideoCapture video(testing::vtest_path().string());
+  cv::Mat frame;
+  ASSERT_TRUE(video.read(frame));
+  HogOptions o = hog_preset("thesis");
+  o.group_threshold = 0;
+  HogPeopleDetector detector(o);
+  const std::vector<Detection> ours = detector.detect_windows(frame, cv::Rect(0, 0, frame.cols, frame.rows));
+
+  cv::HOGDescriptor hog;
+  hog.setSVMDetector(cv::HOGDescriptor::getDefaultPeopleDetector());
+  hog.nlevels = o.levels;
+  std::vector<cv::Rect> rects;
+  std::vector<double> weights;
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  hog.detectMultiScale(frame, rects, weights, o.hit_threshold, cv::Size(o.win_stride, o.win_stride),
+                       cv::Size(o.padding, o.padding), o.scale, 0);
+  cv::setNumThreads(threads);
+
+  using Window = std::tuple<int, int, int, int, double>;
+  std::vector<Window> theirs, mine;
+  for (size_t i = 0; i < rects.size(); ++i)
+    theirs.emplace_back(rects[i].x, rects[i].y, rects[i].width, rects[i].height, weights[i]);
+  for (const Detection& d : ours)
+    mine.emplace_back(cvRound(d.box.x), cvRound(d.box.y), cvRound(d.box.width), cvRound(d.box.height), d.score);
+  std::sort(theirs.begin(), theirs.end());
+  std::sort(mine.begin(), mine.end());
+  ASSERT_GE(theirs.size(), 15u);  // people in the first frame, some found by several windows
+  EXPECT_EQ(mine, theirs);
 }
 
 TEST(MergeOverlapping, MergesChainsAndKeepsDisjoint) {
