@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
@@ -13,6 +14,13 @@ namespace bodyrec {
 
 std::string default_face_cascade() {
   return "/usr/share/opencv4/haarcascades/haarcascade_frontalface_alt2.xml";
+}
+
+cv::Rect largest_face(const std::vector<cv::Rect>& faces) {
+  CV_Assert(!faces.empty());
+  return *std::min_element(faces.begin(), faces.end(), [](const cv::Rect& a, const cv::Rect& b) {
+    return std::make_tuple(-a.area(), a.y, a.x, a.width) < std::make_tuple(-b.area(), b.y, b.x, b.width);
+  });
 }
 
 FaceDetector::FaceDetector(const std::string& cascade_file) {
@@ -42,11 +50,10 @@ FaceResult FaceDetector::detect(const cv::Mat& color, const cv::Rect2d& head, in
   const int max_face = std::max(min_face + 1, static_cast<int>(1.6 * head.height * scale));
   cascade_.detectMultiScale(grey_, faces, 1.1, 3, 0, cv::Size(min_face, min_face), cv::Size(max_face, max_face));
   if (faces.empty()) return r;
-  const auto best = std::max_element(faces.begin(), faces.end(),
-                                     [](const cv::Rect& a, const cv::Rect& b) { return a.area() < b.area(); });
+  const cv::Rect best = largest_face(faces);
   r.face = true;
-  r.box = cv::Rect(roi.x + static_cast<int>(best->x / scale), roi.y + static_cast<int>(best->y / scale),
-                   static_cast<int>(best->width / scale), static_cast<int>(best->height / scale));
+  r.box = cv::Rect(roi.x + static_cast<int>(best.x / scale), roi.y + static_cast<int>(best.y / scale),
+                   static_cast<int>(best.width / scale), static_cast<int>(best.height / scale));
   return r;
 }
 

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/objdetect.hpp>
@@ -21,6 +22,10 @@ struct FaceResult {
   bool face = false;    // a frontal face was found in it
   cv::Rect box;         // the face, colour pixels (when face)
 };
+
+// The face to keep among several found: the largest; of equal ones the topmost, then the leftmost, so
+// that the choice does not follow the order OpenCV's parallel search returns them in. REQUIRES non-empty.
+cv::Rect largest_face(const std::vector<cv::Rect>& faces);
 
 class FaceDetector {
  public:

@@ -40,5 +40,14 @@ TEST(FaceDetector, MissingCascadeIsAnInputError) {
   EXPECT_THROW(FaceDetector("/nonexistent/cascade.xml"), InputError);
 }
 
+TEST(LargestFace, LargestWinsAndTiesDoNotFollowTheOrder) {
+  const cv::Rect small(0, 0, 10, 10), upper(50, 5, 20, 20), lower(5, 40, 20, 20), left(30, 5, 20, 20);
+  EXPECT_EQ(largest_face({small, lower, upper}), upper);
+  EXPECT_EQ(largest_face({upper, small, lower}), upper);
+  EXPECT_EQ(largest_face({upper, left}), left);  // equal size and height: the leftmost
+  EXPECT_EQ(largest_face({left, upper}), left);
+  EXPECT_EQ(largest_face({small, cv::Rect(0, 90, 11, 11)}), cv::Rect(0, 90, 11, 11));
+}
+
 }  // namespace
 }  // namespace bodyrec
