@@ -177,8 +177,8 @@ std::vector<Detection> HogPeopleDetector::search(const cv::Mat& frame, const cv:
   if (pad_x || pad_y) cv::copyMakeBorder(image, image, 0, pad_y, 0, pad_x, cv::BORDER_REPLICATE);
   std::vector<cv::Rect> found;
   std::vector<double> weights;
-  // Raw windows first, grouped afterwards in a fixed order: OpenCV's grouping averages boxes in the order
-  // the pyramid levels arrive, so its own grouping gave slightly different boxes from run to run.
+  // Raw windows first, then grouped. pyramid_windows already returns them in a fixed order; the sort keeps
+  // the canonical order every published figure was measured with (grouping averages boxes in input order).
   pyramid_windows(hog, image, options_.hit_threshold, cv::Size(options_.win_stride, options_.win_stride),
                   cv::Size(how.padding, how.padding), options_.scale, found, weights);
   sort_windows(found, weights);
