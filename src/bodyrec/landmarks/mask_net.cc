@@ -13,12 +13,12 @@
 
 #include <dlib/dnn.h>
 #include <dlib/opencv/cv_image.h>
-#include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/landmarks/contour.h"
 #include "bodyrec/landmarks/leg_gap.h"
+#include "bodyrec/landmarks/unet_runner.h"
 
 namespace bodyrec {
 namespace {
@@ -60,15 +60,9 @@ dlib::matrix<dlib::rgb_pixel> to_dlib(const cv::Mat& bgr) {
   return m;
 }
 
-// dlib trains the network; OpenCV's DNN module runs it (about 2.5x faster on the CPU for these small
-// layers). The same network is rebuilt there: each batch normalisation (an affine_ after training) folded
-// into the convolution before it, dlib's bilinear upsampling = OpenCV's with align_corners, concatenation
-// in tag order (skip connection first). MaskNetTest.OpenCvRunsTheDlibNetwork checks the outputs agree.
-struct ConvWeights {
-  int filters = 0, inputs = 0, size = 0;
-  std::vector<float> weights, biases;
-};
-
+// dlib trains the network; UnetRunner (oneDNN) runs it, several times faster on the CPU for these small
+// layers. Each batch normalisation (an affine_ after training) is folded into the convolution before it.
+// TrainedMaskNet.RunnerRunsTheDlibNetwork checks the outputs agree.
 struct CollectWeights {  // visits computational layers from the output back to the input
   std::vector<ConvWeights>* convs;
   std::vector<std::vector<float>>* scales;  // gamma then beta of each affine_
@@ -96,101 +90,25 @@ struct CollectWeights {  // visits computational layers from the output back to 
   void operator()(const T&) const {}
 };
 
-class OpenCvUnet {
- public:
-  explicit OpenCvUnet(RunNet& trained) {
-    CollectWeights collect{&convs_, &scales_};
-    dlib::visit_computational_layers(trained, collect);
-    std::reverse(convs_.begin(), convs_.end());
-    std::reverse(scales_.begin(), scales_.end());
-    CV_Assert(convs_.size() == 15 && scales_.size() == 14);
-    for (size_t i = 0; i < scales_.size(); ++i) {  // fold: gamma * (w x + b) + beta
-      ConvWeights& c = convs_[i];
-      const std::vector<float>& s = scales_[i];
-      const size_t per_filter = c.weights.size() / static_cast<size_t>(c.filters);
-      for (size_t f = 0; f < static_cast<size_t>(c.filters); ++f) {
-        for (size_t k = 0; k < per_filter; ++k) c.weights[f * per_filter + k] *= s[f];
-        c.biases[f] = c.biases[f] * s[f] + s[static_cast<size_t>(c.filters) + f];
-      }
+// The trained network's 15 convolutions from the input to the output, batch normalisations folded in.
+std::vector<ConvWeights> folded_convs(RunNet& trained) {
+  std::vector<ConvWeights> convs;
+  std::vector<std::vector<float>> scales;
+  dlib::visit_computational_layers(trained, CollectWeights{&convs, &scales});
+  std::reverse(convs.begin(), convs.end());
+  std::reverse(scales.begin(), scales.end());
+  CV_Assert(convs.size() == 15 && scales.size() == 14);
+  for (size_t i = 0; i < scales.size(); ++i) {  // fold: gamma * (w x + b) + beta
+    ConvWeights& c = convs[i];
+    const std::vector<float>& s = scales[i];
+    const size_t per_filter = c.weights.size() / static_cast<size_t>(c.filters);
+    for (size_t f = 0; f < static_cast<size_t>(c.filters); ++f) {
+      for (size_t k = 0; k < per_filter; ++k) c.weights[f * per_filter + k] *= s[f];
+      c.biases[f] = c.biases[f] * s[f] + s[static_cast<size_t>(c.filters) + f];
     }
-    const int s1 = block(0), s2 = block(pool(s1)), s3 = block(pool(s2)), bottom = block(pool(s3));
-    conv(block(join(block(join(block(join(bottom, s3)), s2)), s1)), false);
-    net_.setPreferableBackend(cv::dnn::DNN_BACKEND_OPENCV);
-    net_.setPreferableTarget(cv::dnn::DNN_TARGET_CPU);
   }
-
-  // `crops` BGR, all one size, run as one batch; returns each one's logits (rows x cols, CV_32F).
-  // dlib's input_rgb_image: RGB planes, (v - mean) / 256.
-  std::vector<cv::Mat> forward(const std::vector<cv::Mat>& crops) {
-    static const float mean[3] = {122.782f, 117.001f, 104.298f};
-    CV_Assert(!crops.empty());
-    const int rows = crops.front().rows, cols = crops.front().cols;
-    for (const cv::Mat& crop : crops) CV_Assert(crop.type() == CV_8UC3 && crop.rows == rows && crop.cols == cols);
-    const int shape[] = {static_cast<int>(crops.size()), 3, rows, cols};
-    cv::Mat blob(4, shape, CV_32F);
-    for (int n = 0; n < shape[0]; ++n)
-      for (int ch = 0; ch < 3; ++ch)
-        for (int r = 0; r < rows; ++r) {
-          float* out = blob.ptr<float>(n, ch, r);
-          const cv::Vec3b* in = crops[static_cast<size_t>(n)].ptr<cv::Vec3b>(r);
-          for (int c = 0; c < cols; ++c) out[c] = (in[c][2 - ch] - mean[ch]) / 256.f;
-        }
-    net_.setInput(blob);
-    const cv::Mat out = net_.forward();
-    std::vector<cv::Mat> logits;
-    for (int n = 0; n < shape[0]; ++n)
-      logits.push_back(cv::Mat(rows, cols, CV_32F, const_cast<float*>(out.ptr<float>(n, 0))).clone());
-    return logits;
-  }
-
- private:
-  int add(const std::string& type, cv::dnn::LayerParams params, int input) {
-    params.type = type;
-    params.name = type + std::to_string(layers_++);
-    const int id = net_.addLayer(params.name, type, params);
-    net_.connect(input, 0, id, 0);
-    return id;
-  }
-  int conv(int input, bool relu) {
-    ConvWeights& c = convs_[next_conv_++];
-    cv::dnn::LayerParams p;
-    p.set("kernel_size", c.size);
-    p.set("pad", c.size / 2);
-    p.set("stride", 1);
-    p.set("num_output", c.filters);
-    p.set("bias_term", true);
-    const int shape[] = {c.filters, c.inputs, c.size, c.size};
-    p.blobs = {cv::Mat(4, shape, CV_32F, c.weights.data()).clone(), cv::Mat(1, c.filters, CV_32F, c.biases.data()).clone()};
-    const int id = add("Convolution", p, input);
-    return relu ? add("ReLU", cv::dnn::LayerParams(), id) : id;
-  }
-  int block(int input) { return conv(conv(input, true), true); }
-  int pool(int input) {
-    cv::dnn::LayerParams p;
-    p.set("pool", "max");
-    p.set("kernel_size", 2);
-    p.set("stride", 2);
-    return add("Pooling", p, input);
-  }
-  int join(int below, int skip) {  // upsample `below` x2, then [skip, upsampled] along channels
-    cv::dnn::LayerParams p;
-    p.set("interpolation", "bilinear");
-    p.set("zoom_factor", 2);
-    p.set("align_corners", true);
-    const int up = add("Resize", p, below);
-    cv::dnn::LayerParams c;
-    c.set("axis", 1);
-    const int id = add("Concat", c, skip);
-    net_.connect(up, 0, id, 1);
-    return id;
-  }
-
-  cv::dnn::Net net_;
-  std::vector<ConvWeights> convs_;
-  std::vector<std::vector<float>> scales_;
-  size_t next_conv_ = 0;
-  int layers_ = 0;
-};
+  return convs;
+}
 
 struct PixelBox {  // a box rounded to whole pixels, at least 1x1
   int x, y, width, height;
@@ -208,26 +126,27 @@ struct Member {
   Member(Member&&) = default;  // not copyable (so that vectors of them move)
   Member& operator=(Member&&) = default;
   mutable RunNet net;  // what is saved (dlib's serialisation); its forward pass keeps buffers
-  // What runs (built from `net`), one per crop so that the crops can run side by side: an OpenCV network
-  // keeps buffers between calls and is not thread-safe.
-  std::vector<std::unique_ptr<OpenCvUnet>> runners;
-  void build_runners() {
+  // What runs (built from `net`), one per crop so that the crops can run side by side: a runner keeps
+  // buffers between calls and is not thread-safe.
+  std::vector<std::unique_ptr<UnetRunner>> runners;
+  void build_runners(cv::Size input) {
     runners.clear();
-    for (size_t i = 0; i < kMaxCrops; ++i) runners.push_back(std::make_unique<OpenCvUnet>(net));
+    const std::vector<ConvWeights> convs = folded_convs(net);
+    for (size_t i = 0; i < kMaxCrops; ++i) runners.push_back(std::make_unique<UnetRunner>(convs, input));
   }
 };
 
-// Each crop's logits, the mean over the networks. Every (network, crop) pass runs on its own, side by
-// side on OpenCV's threads: one pass of these small layers gains little from being split across threads
-// (OpenCV then runs its layers serially: nested parallel loops are not split), two passes nearly twice.
+// Each crop's logits, the mean over the networks. Every (network, crop) pass runs on one thread, side by
+// side on OpenCV's threads: one pass of these small layers gains little from being split across threads,
+// two passes side by side nearly twice.
 std::vector<cv::Mat> mean_forward(const std::vector<Member>& members, const std::vector<cv::Mat>& crops) {
   CV_Assert(!crops.empty() && crops.size() <= kMaxCrops);
   const size_t n = crops.size();
-  if (members.size() * n == 1) return members.front().runners.front()->forward(crops);
+  if (members.size() * n == 1) return {members.front().runners.front()->forward(crops.front())};
   std::vector<cv::Mat> each(members.size() * n);
   cv::parallel_for_(cv::Range(0, static_cast<int>(each.size())), [&](const cv::Range& range) {
     for (size_t i = static_cast<size_t>(range.start); i < static_cast<size_t>(range.end); ++i)
-      each[i] = members[i / n].runners[i % n]->forward({crops[i % n]}).front();
+      each[i] = members[i / n].runners[i % n]->forward(crops[i % n]);
   });
   std::vector<cv::Mat> mean(each.begin(), each.begin() + static_cast<std::ptrdiff_t>(n));
   for (size_t i = n; i < each.size(); ++i) mean[i % n] += each[i];
@@ -341,7 +260,7 @@ BodyMaskNet::BodyMaskNet(std::istream& in, const std::string& name) : BodyMaskNe
     if (width < 8 || height < 8 || width % 8 || height % 8 || !std::isfinite(impl_->threshold))
       throw InputError(name + ": mask-net model has an invalid input size or threshold");
     impl_->input = cv::Size(width, height);
-    for (Member& m : impl_->members) m.build_runners();
+    for (Member& m : impl_->members) m.build_runners(impl_->input);
   } catch (const dlib::serialization_error& e) {
     std::string why = e.what();
     throw InputError(name + ": truncated or corrupt mask-net model (" + why.substr(0, why.find('\n')) + ")");
@@ -543,7 +462,7 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
     l->net.clean();
     Member m;
     m.net = l->net;
-    m.build_runners();
+    m.build_runners(size);
     model.impl_->members.push_back(std::move(m));
   }
   model.impl_->input = size;

@@ -1,5 +1,5 @@
-// Body contours from a per-pixel body mask: a small fully convolutional network (a U-Net, dlib's DNN on
-// the CPU) labels every pixel of a person's box as body or background, and the landmarks are that mask's
+// Body contours from a per-pixel body mask: a small fully convolutional network (a U-Net trained with
+// dlib's DNN on the CPU, run with oneDNN: unet_runner.h) labels every pixel of a person's box as body or background, and the landmarks are that mask's
 // outline sampled exactly as the training contours were (contour_from_mask: point 0 at the head top,
 // clockwise, equally spaced by arc length). Regressing the N coordinates directly (the thesis's regression
 // trees) makes points slide along the outline wherever a leg or arm gap changes its length; a mask carries
@@ -30,7 +30,7 @@ struct MaskNetTrainOptions {
   double threshold = 0.5;          // logit above which a pixel is body (stored in the model)
   double box_jitter = 0.03;        // std-dev of the box's shift (x; half of it in y) and log-size, per box side
   unsigned seed = 0;               // augmentation draws (network k: seed + k)
-  int networks = 1;                // trained side by side; fitting averages their logits
+  int networks = 2;                // trained side by side; fitting averages their logits
   bool verbose = false;            // loss every 10 % of the run on stderr
   void check() const;              // throws UsageError naming the option
 };
@@ -49,7 +49,8 @@ class BodyMaskNet {
   void save(std::ostream& out) const;
 
   // The network's per-pixel body logits of `box` in `bgr` (CV_8UC3): input_height x input_width, CV_32F.
-  // A model of several networks gives the mean of theirs; they run side by side, one OpenCV thread each.
+  // A model of several networks gives the mean of theirs; they run side by side, one OpenCV thread each
+  // (unet_runner.h).
   cv::Mat logits(const cv::Mat& bgr, const Box& box) const;
   // The same from dlib's own forward pass (slower): the check that the network OpenCV runs is dlib's.
   cv::Mat reference_logits(const cv::Mat& bgr, const Box& box) const;

@@ -57,6 +57,7 @@ ShapeTrainOptions small_net(int iterations) {
   o.net.batch = 8;
   o.net.learning_rate = 5e-3;
   o.net.threshold = 0;
+  o.net.networks = 1;
   return o;
 }
 
@@ -183,7 +184,7 @@ TEST_F(TrainedMaskNet, RecoversTheOutlinesOfUnseenSilhouettes) {
   EXPECT_GT(signed_area2(points), 0);  // clockwise on screen
 }
 
-TEST_F(TrainedMaskNet, OpenCvRunsTheDlibNetwork) {
+TEST_F(TrainedMaskNet, RunnerRunsTheDlibNetwork) {
   const auto& image = train_->images[0];
   testing::TempDir dir;
   save_body_shape(*model_, (dir / "net.dat").string());

@@ -1,0 +1,181 @@
+#include "bodyrec/landmarks/unet_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include <oneapi/dnnl/dnnl.hpp>
+#include <omp.h>
+
+namespace bodyrec {
+namespace {
+
+using dnnl::memory;
+
+// Activations in channels-last order (NHWC, batch 1): the pooling, upsampling and concatenation below are
+// plain loops over pixels, and oneDNN's convolutions run as fast on this layout as on its blocked ones.
+struct Tensor {
+  int c, h, w;
+  std::vector<float> data;
+  Tensor(int channels, int rows, int cols) : c(channels), h(rows), w(cols), data(static_cast<size_t>(c) * h * w) {}
+  float* pixel(int y, int x) { return data.data() + (static_cast<size_t>(y) * w + x) * c; }
+  memory::desc desc() const { return memory::desc({1, c, h, w}, memory::data_type::f32, memory::format_tag::nhwc); }
+};
+
+void max_pool(Tensor& in, Tensor& out) {  // 2x2, stride 2 (even sizes)
+  for (int y = 0; y < out.h; ++y)
+    for (int x = 0; x < out.w; ++x) {
+      const float *a = in.pixel(2 * y, 2 * x), *b = in.pixel(2 * y, 2 * x + 1), *c = in.pixel(2 * y + 1, 2 * x),
+                  *d = in.pixel(2 * y + 1, 2 * x + 1);
+      float* o = out.pixel(y, x);
+      for (int k = 0; k < out.c; ++k) o[k] = std::max(std::max(a[k], b[k]), std::max(c[k], d[k]));
+    }
+}
+
+// out = [skip, `below` upsampled to skip's size] along the channels. The upsampling is dlib's
+// resize_bilinear (corners aligned), float for float.
+void join(Tensor& skip, Tensor& below, Tensor& out) {
+  const float ys = (below.h - 1) / static_cast<float>(std::max(out.h - 1, 1));
+  const float xs = (below.w - 1) / static_cast<float>(std::max(out.w - 1, 1));
+  for (int y = 0; y < out.h; ++y) {
+    const float fy = y * ys;
+    const int top = static_cast<int>(std::floor(fy)), bottom = std::min(top + 1, below.h - 1);
+    const float tb = fy - top;
+    for (int x = 0; x < out.w; ++x) {
+      const float fx = x * xs;
+      const int left = static_cast<int>(std::floor(fx)), right = std::min(left + 1, below.w - 1);
+      const float lr = fx - left;
+      float* o = out.pixel(y, x);
+      std::copy_n(skip.pixel(y, x), skip.c, o);
+      const float *tl = below.pixel(top, left), *tr = below.pixel(top, right), *bl = below.pixel(bottom, left),
+                  *br = below.pixel(bottom, right);
+      for (int k = 0; k < below.c; ++k)
+        o[skip.c + k] = (1 - tb) * ((1 - lr) * tl[k] + lr * tr[k]) + tb * ((1 - lr) * bl[k] + lr * br[k]);
+    }
+  }
+}
+
+// oneDNN parallelises with OpenMP. A pass runs on one thread, so that passes can run side by side on
+// OpenCV's threads without each starting a team over every core; the calling thread's OpenMP setting is
+// put back afterwards (it may be an application's own).
+class OneOmpThread {
+ public:
+  OneOmpThread() : before_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~OneOmpThread() { omp_set_num_threads(before_); }
+  OneOmpThread(const OneOmpThread&) = delete;
+  OneOmpThread& operator=(const OneOmpThread&) = delete;
+
+ private:
+  int before_;
+};
+
+}  // namespace
+
+struct UnetRunner::Impl {
+  dnnl::engine engine{dnnl::engine::kind::cpu, 0};
+  dnnl::stream stream{engine};
+  std::deque<Tensor> tensors;  // stable addresses
+  std::vector<std::vector<float>> biases;  // the bias memories point into these (moves keep the buffers)
+  std::vector<std::function<void()>> steps;
+
+  Tensor& make(int c, int h, int w) {
+    tensors.emplace_back(c, h, w);
+    return tensors.back();
+  }
+
+  Tensor& conv(const ConvWeights& cw, Tensor& src, bool relu) {
+    if (cw.inputs != src.c || cw.weights.size() != static_cast<size_t>(cw.filters) * cw.inputs * cw.size * cw.size ||
+        cw.biases.size() != static_cast<size_t>(cw.filters) || cw.size % 2 == 0)
+      throw std::invalid_argument("UnetRunner: convolution of " + std::to_string(cw.inputs) + " inputs after " +
+                                  std::to_string(src.c) + " channels, or malformed weights");
+    Tensor& dst = make(cw.filters, src.h, src.w);
+    const memory::dim k = cw.size, pad = cw.size / 2;
+    const memory::desc weights_any({cw.filters, cw.inputs, k, k}, memory::data_type::f32, memory::format_tag::any);
+    const memory::desc bias_desc({cw.filters}, memory::data_type::f32, memory::format_tag::x);
+    const dnnl::convolution_forward::desc d(dnnl::prop_kind::forward_inference, dnnl::algorithm::convolution_direct,
+                                            src.desc(), weights_any, bias_desc, dst.desc(), {1, 1}, {pad, pad},
+                                            {pad, pad});
+    dnnl::primitive_attr attr;
+    if (relu) {
+      dnnl::post_ops ops;
+      ops.append_eltwise(1.f, dnnl::algorithm::eltwise_relu, 0.f, 0.f);
+      attr.set_post_ops(ops);
+    }
+    const dnnl::convolution_forward::primitive_desc pd(d, attr, engine);
+    // The weights in the layout the chosen implementation wants, once.
+    std::vector<float> oihw = cw.weights;
+    memory given({{cw.filters, cw.inputs, k, k}, memory::data_type::f32, memory::format_tag::oihw}, engine, oihw.data());
+    memory weights(pd.weights_desc(), engine);
+    dnnl::reorder(given, weights).execute(stream, given, weights);
+    stream.wait();
+    biases.push_back(cw.biases);
+    memory bias(bias_desc, engine, biases.back().data());
+    memory in(src.desc(), engine, src.data.data()), out(dst.desc(), engine, dst.data.data());
+    dnnl::convolution_forward prim(pd);
+    steps.push_back([this, prim, in, weights, bias, out] {
+      prim.execute(stream, {{DNNL_ARG_SRC, in}, {DNNL_ARG_WEIGHTS, weights}, {DNNL_ARG_BIAS, bias}, {DNNL_ARG_DST, out}});
+    });
+    return dst;
+  }
+
+  Tensor& pool(Tensor& src) {
+    Tensor& dst = make(src.c, src.h / 2, src.w / 2);
+    steps.push_back([&src, &dst] { max_pool(src, dst); });
+    return dst;
+  }
+
+  Tensor& joined(Tensor& skip, Tensor& below) {
+    Tensor& dst = make(skip.c + below.c, skip.h, skip.w);
+    steps.push_back([&skip, &below, &dst] { join(skip, below, dst); });
+    return dst;
+  }
+};
+
+UnetRunner::UnetRunner(const std::vector<ConvWeights>& convs, cv::Size input) : impl_(std::make_unique<Impl>()) {
+  if (convs.size() != 15) throw std::invalid_argument("UnetRunner: 15 convolutions expected");
+  if (input.width < 8 || input.height < 8 || input.width % 8 || input.height % 8)
+    throw std::invalid_argument("UnetRunner: the input size must be multiples of 8");
+  Impl& n = *impl_;
+  size_t next = 0;
+  const auto block = [&](Tensor& in) -> Tensor& {
+    Tensor& a = n.conv(convs[next++], in, true);
+    return n.conv(convs[next++], a, true);
+  };
+  Tensor& in = n.make(3, input.height, input.width);
+  Tensor& s1 = block(in);
+  Tensor& s2 = block(n.pool(s1));
+  Tensor& s3 = block(n.pool(s2));
+  Tensor& bottom = block(n.pool(s3));
+  Tensor& u3 = block(n.joined(s3, bottom));
+  Tensor& u2 = block(n.joined(s2, u3));
+  Tensor& u1 = block(n.joined(s1, u2));
+  n.conv(convs[next++], u1, false);
+  if (n.tensors.back().c != 1) throw std::invalid_argument("UnetRunner: the last convolution must give one logit");
+}
+
+UnetRunner::~UnetRunner() = default;
+
+cv::Mat UnetRunner::forward(const cv::Mat& crop) {
+  static const float mean[3] = {122.782f, 117.001f, 104.298f};
+  Impl& n = *impl_;
+  Tensor& in = n.tensors.front();
+  if (crop.type() != CV_8UC3 || crop.rows != in.h || crop.cols != in.w)
+    throw std::invalid_argument("UnetRunner: the crop must be CV_8UC3 of the network's input size");
+  for (int y = 0; y < in.h; ++y) {
+    const cv::Vec3b* row = crop.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < in.w; ++x) {
+      float* p = in.pixel(y, x);
+      for (int ch = 0; ch < 3; ++ch) p[ch] = (row[x][2 - ch] - mean[ch]) / 256.f;
+    }
+  }
+  const OneOmpThread one_thread;
+  for (const auto& step : n.steps) step();
+  n.stream.wait();
+  Tensor& out = n.tensors.back();
+  return cv::Mat(out.h, out.w, CV_32F, out.data.data()).clone();
+}
+
+}  // namespace bodyrec
