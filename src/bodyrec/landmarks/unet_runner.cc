@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 #include <oneapi/dnnl/dnnl.hpp>
 #include <omp.h>
@@ -15,8 +16,8 @@ namespace {
 
 using dnnl::memory;
 
-// Activations in channels-last order (NHWC, batch 1): the pooling, upsampling and concatenation below are
-// plain loops over pixels, and oneDNN's convolutions run as fast on this layout as on its blocked ones.
+// Activations in channels-last order (NHWC, batch 1): the upsampling and concatenation below are plain
+// loops over pixels, and oneDNN's convolutions run as fast on this layout as on its blocked ones.
 struct Tensor {
   int c, h, w;
   std::vector<float> data;
@@ -25,18 +26,8 @@ struct Tensor {
   memory::desc desc() const { return memory::desc({1, c, h, w}, memory::data_type::f32, memory::format_tag::nhwc); }
 };
 
-void max_pool(Tensor& in, Tensor& out) {  // 2x2, stride 2 (even sizes)
-  for (int y = 0; y < out.h; ++y)
-    for (int x = 0; x < out.w; ++x) {
-      const float *a = in.pixel(2 * y, 2 * x), *b = in.pixel(2 * y, 2 * x + 1), *c = in.pixel(2 * y + 1, 2 * x),
-                  *d = in.pixel(2 * y + 1, 2 * x + 1);
-      float* o = out.pixel(y, x);
-      for (int k = 0; k < out.c; ++k) o[k] = std::max(std::max(a[k], b[k]), std::max(c[k], d[k]));
-    }
-}
-
 // out = [skip, `below` upsampled to skip's size] along the channels. The upsampling is dlib's
-// resize_bilinear (corners aligned), float for float.
+// resize_bilinear (corners aligned), float for float; oneDNN 2.6's resampling has no corner-aligned mode.
 void join(Tensor& skip, Tensor& below, Tensor& out) {
   const float ys = (below.h - 1) / static_cast<float>(std::max(out.h - 1, 1));
   const float xs = (below.w - 1) / static_cast<float>(std::max(out.w - 1, 1));
@@ -78,12 +69,15 @@ struct UnetRunner::Impl {
   dnnl::engine engine{dnnl::engine::kind::cpu, 0};
   dnnl::stream stream{engine};
   std::deque<Tensor> tensors;  // stable addresses
-  std::vector<std::vector<float>> biases;  // the bias memories point into these (moves keep the buffers)
   std::vector<std::function<void()>> steps;
 
   Tensor& make(int c, int h, int w) {
     tensors.emplace_back(c, h, w);
     return tensors.back();
+  }
+  memory wrap(Tensor& t) { return memory(t.desc(), engine, t.data.data()); }
+  void run(dnnl::primitive prim, std::unordered_map<int, memory> args) {
+    steps.push_back([this, prim, args] { prim.execute(stream, args); });
   }
 
   Tensor& conv(const ConvWeights& cw, Tensor& src, bool relu) {
@@ -111,19 +105,19 @@ struct UnetRunner::Impl {
     memory weights(pd.weights_desc(), engine);
     dnnl::reorder(given, weights).execute(stream, given, weights);
     stream.wait();
-    biases.push_back(cw.biases);
-    memory bias(bias_desc, engine, biases.back().data());
-    memory in(src.desc(), engine, src.data.data()), out(dst.desc(), engine, dst.data.data());
-    dnnl::convolution_forward prim(pd);
-    steps.push_back([this, prim, in, weights, bias, out] {
-      prim.execute(stream, {{DNNL_ARG_SRC, in}, {DNNL_ARG_WEIGHTS, weights}, {DNNL_ARG_BIAS, bias}, {DNNL_ARG_DST, out}});
-    });
+    memory bias(bias_desc, engine);
+    std::copy(cw.biases.begin(), cw.biases.end(), static_cast<float*>(bias.get_data_handle()));
+    run(dnnl::convolution_forward(pd),
+        {{DNNL_ARG_SRC, wrap(src)}, {DNNL_ARG_WEIGHTS, weights}, {DNNL_ARG_BIAS, bias}, {DNNL_ARG_DST, wrap(dst)}});
     return dst;
   }
 
-  Tensor& pool(Tensor& src) {
+  Tensor& pool(Tensor& src) {  // 2x2 max, stride 2
     Tensor& dst = make(src.c, src.h / 2, src.w / 2);
-    steps.push_back([&src, &dst] { max_pool(src, dst); });
+    const dnnl::pooling_forward::desc d(dnnl::prop_kind::forward_inference, dnnl::algorithm::pooling_max, src.desc(),
+                                        dst.desc(), {2, 2}, {2, 2}, {0, 0}, {0, 0});
+    run(dnnl::pooling_forward(dnnl::pooling_forward::primitive_desc(d, engine)),
+        {{DNNL_ARG_SRC, wrap(src)}, {DNNL_ARG_DST, wrap(dst)}});
     return dst;
   }
 
