@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <string>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/openblas.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "bodyrec/landmarks/shape_training.h"
@@ -51,11 +53,14 @@ struct TrainShapeCommand {
     const BodyShapeModel model = train_body_shape(train, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     save_body_shape(model, out);
-    std::printf("trained on    %d images, %d landmarks per person, %s, %.1f s\n", static_cast<int>(train.images.size()),
-                model.landmarks(), model.kind_name().c_str(), seconds);
+    const std::string blas = openblas_core();
+    std::printf("trained on    %d images, %d landmarks per person, %s, %.1f s%s\n", static_cast<int>(train.images.size()),
+                model.landmarks(), model.kind_name().c_str(), seconds,
+                blas.empty() ? "" : (" (OpenBLAS kernels: " + blas + ")").c_str());
     const LandmarkScores t = evaluate_body_shape(model, train, train_xml);
     print_landmark_scores("training error", t);
     nlohmann::json j = {{"train", landmark_scores_json(t)}, {"seconds", seconds}, {"method", model.kind_name()}};
+    if (!blas.empty()) j["blas_kernels"] = blas;
     if (!validation.images.empty()) {
       const LandmarkScores v = evaluate_body_shape(model, validation, train_xml);
       print_landmark_scores("validation error (every " + std::to_string(holdout_every) + "th source image held out)", v);
@@ -99,7 +104,9 @@ void add(CLI::App& app) {
       "landmark over the outlines at five thresholds (--threshold-offsets), then applies a linear\n"
       "correction of the whole shape learnt on the training people's fits (ridge regression, stored in\n"
       "the model; eval landmarks --no-correction). Its target masks are the filled\n"
-      "landmark polygons. Threads come from the BLAS library (OPENBLAS_NUM_THREADS). --networks 2 (the\n"
+      "landmark polygons. Threads come from the BLAS library (OPENBLAS_NUM_THREADS); where OpenBLAS falls\n"
+      "back to its SSE3 kernels on a CPU it does not know, bodyrec switches it to its AVX2 or AVX-512 ones\n"
+      "(OPENBLAS_CORETYPE overrides; the kernels used are printed). --networks 2 (the\n"
       "default) trains two networks side by side, one thread each (OpenBLAS set to one thread meanwhile),\n"
       "and fitting averages their logits: on the Penn-Fudan test split 6.11 % of box height against 6.23 %\n"
       "with --networks 1, for 1.4x the fitting time (docs/benchmarks.md). trees: the thesis's\n"

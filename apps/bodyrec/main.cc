@@ -7,6 +7,7 @@
 #include <opencv2/core/utils/logger.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/openblas.h"
 #include "command.h"
 
 namespace {
@@ -23,6 +24,7 @@ void quiet_library_logs() {
 
 int main(int argc, char** argv) {
   quiet_library_logs();
+  bodyrec::choose_openblas_core();  // before any BLAS call: OpenBLAS 0.3.21 misjudges newer CPUs
   CLI::App app{
       "bodyrec: finds people, outlines their body contours, tells group leaders from members and\n"
       "passers-by, and re-identifies people who come back, with one camera or one RGB-D sensor.\n"

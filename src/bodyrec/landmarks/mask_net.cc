@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <dlfcn.h>
 #include <istream>
 #include <optional>
 #include <ostream>
@@ -16,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/openblas.h"
 #include "bodyrec/landmarks/contour.h"
 #include "bodyrec/landmarks/leg_gap.h"
 #include "bodyrec/landmarks/unet_runner.h"
@@ -154,32 +154,6 @@ std::vector<cv::Mat> mean_forward(const std::vector<Member>& members, const std:
     for (cv::Mat& m : mean) m /= static_cast<double>(members.size());
   return mean;
 }
-
-// While several dlib trainers run side by side, one per core, OpenBLAS (Debian's BLAS) must not split each of
-// their calls over every core too: that ran a pair of networks over 3.5x longer. Found through dlsym, so that
-// another BLAS library is left alone; the former setting is restored afterwards.
-class OneBlasThread {
- public:
-  OneBlasThread() {
-    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    if (!set_ || !get) {
-      set_ = nullptr;
-      return;
-    }
-    before_ = get();
-    set_(1);
-  }
-  ~OneBlasThread() {
-    if (set_) set_(before_);
-  }
-  OneBlasThread(const OneBlasThread&) = delete;
-  OneBlasThread& operator=(const OneBlasThread&) = delete;
-
- private:
-  void (*set_)(int) = nullptr;
-  int before_ = 1;
-};
 
 }  // namespace
 
