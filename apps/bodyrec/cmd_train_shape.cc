@@ -54,9 +54,9 @@ struct TrainShapeCommand {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     save_body_shape(model, out);
     const std::string blas = openblas_core();
+    const std::string kernels = blas.empty() ? "" : " (OpenBLAS kernels: " + blas + ")";
     std::printf("trained on    %d images, %d landmarks per person, %s, %.1f s%s\n", static_cast<int>(train.images.size()),
-                model.landmarks(), model.kind_name().c_str(), seconds,
-                blas.empty() ? "" : (" (OpenBLAS kernels: " + blas + ")").c_str());
+                model.landmarks(), model.kind_name().c_str(), seconds, kernels.c_str());
     const LandmarkScores t = evaluate_body_shape(model, train, train_xml);
     print_landmark_scores("training error", t);
     nlohmann::json j = {{"train", landmark_scores_json(t)}, {"seconds", seconds}, {"method", model.kind_name()}};

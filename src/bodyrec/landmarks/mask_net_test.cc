@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
+#include "bodyrec/core/openblas.h"
 #include "bodyrec/landmarks/body_shape.h"
 #include "bodyrec/landmarks/body_shape_impl.h"
 #include "bodyrec/landmarks/contour.h"
@@ -120,11 +121,11 @@ TEST(MaskNet, NetworksTrainSideBySideReproducibly) {
   // OpenBLAS runs one thread per call while trainers run side by side (and as before afterwards); the
   // single network is trained so too, since the threads change the sums' order and so the last bits.
   const auto get_blas = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  const auto set_blas = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   const int blas_threads = get_blas ? get_blas() : 0;
-  if (set_blas) set_blas(1);
-  const BodyMaskNet one = train_body_mask_net(data, o);
-  if (set_blas) set_blas(blas_threads);
+  const BodyMaskNet one = [&] {
+    OneBlasThread one_thread;
+    return train_body_mask_net(data, o);
+  }();
   o.networks = 2;
   const BodyMaskNet pair = train_body_mask_net(data, o);
   if (get_blas) {
