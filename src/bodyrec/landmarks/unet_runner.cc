@@ -51,7 +51,10 @@ void join(Tensor& skip, Tensor& below, Tensor& out) {
 
 // oneDNN parallelises with OpenMP. A pass runs on one thread, so that passes can run side by side on
 // OpenCV's threads without each starting a team over every core; the calling thread's OpenMP setting is
-// put back afterwards (it may be an application's own).
+// put back afterwards (it may be an application's own). Held while the primitives are made too: oneDNN's
+// convolutions fix their thread count then, and one made for two threads starts a team of two at every
+// call whatever the caller's setting; its spinning threads then fight whatever else runs for the cores
+// (two processes fitting on two cores: 11 ms per person each instead of 3; docs/benchmarks.md).
 class OneOmpThread {
  public:
   OneOmpThread() : before_(omp_get_max_threads()) { omp_set_num_threads(1); }
@@ -132,6 +135,7 @@ UnetRunner::UnetRunner(const std::vector<ConvWeights>& convs, cv::Size input) : 
   if (convs.size() != 15) throw std::invalid_argument("UnetRunner: 15 convolutions expected");
   if (input.width < 8 || input.height < 8 || input.width % 8 || input.height % 8)
     throw std::invalid_argument("UnetRunner: the input size must be multiples of 8");
+  const OneOmpThread one_thread;
   Impl& n = *impl_;
   size_t next = 0;
   const auto block = [&](Tensor& in) -> Tensor& {
