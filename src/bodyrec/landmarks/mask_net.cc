@@ -17,6 +17,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/openblas.h"
 #include "bodyrec/landmarks/contour.h"
+#include "bodyrec/landmarks/dnnl_con.h"
 #include "bodyrec/landmarks/leg_gap.h"
 #include "bodyrec/landmarks/unet_runner.h"
 
@@ -27,8 +28,9 @@ namespace {
 // per level, skip connections by concatenation, one logit per pixel. About 53 000 weights; ~10 M
 // multiply-adds for a 24x72 crop (the default), ~18 M for 32x96.
 constexpr int kChannels = 8;
-template <int N, template <typename> class BN, typename S>
-using block = dlib::relu<BN<dlib::con<N, 3, 3, 1, 1, dlib::relu<BN<dlib::con<N, 3, 3, 1, 1, S>>>>>>;
+template <long N, long K, typename S> using dlib_con = dlib::con<N, K, K, 1, 1, S>;
+template <int N, template <typename> class BN, template <long, long, typename> class CON, typename S>
+using block = dlib::relu<BN<CON<N, 3, dlib::relu<BN<CON<N, 3, S>>>>>>;
 template <template <typename> class TAGGED, template <typename> class PREV, typename S>
 using join = dlib::add_layer<dlib::concat_<TAGGED, PREV>, PREV<dlib::resize_prev_to_tagged<TAGGED, S>>>;
 template <typename S> using skip1 = dlib::add_tag_layer<2101, S>;
@@ -37,17 +39,18 @@ template <typename S> using skip3 = dlib::add_tag_layer<2103, S>;
 template <typename S> using up1 = dlib::add_tag_layer<2111, S>;
 template <typename S> using up2 = dlib::add_tag_layer<2112, S>;
 template <typename S> using up3 = dlib::add_tag_layer<2113, S>;
-template <template <typename> class BN>
-using unet = dlib::con<1, 1, 1, 1, 1,
-    block<kChannels, BN, join<skip1, up1, dlib::upsample<2,
-    block<kChannels, BN, join<skip2, up2, dlib::upsample<2,
-    block<2 * kChannels, BN, join<skip3, up3, dlib::upsample<2,
-    block<4 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
-    skip3<block<4 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
-    skip2<block<2 * kChannels, BN, dlib::max_pool<2, 2, 2, 2,
-    skip1<block<kChannels, BN, dlib::input_rgb_image>>>>>>>>>>>>>>>>>>>>;
-using TrainNet = dlib::loss_binary_log_per_pixel<unet<dlib::bn_con>>;
-using RunNet = dlib::loss_binary_log_per_pixel<unet<dlib::affine>>;
+template <template <typename> class BN, template <long, long, typename> class CON>
+using unet = CON<1, 1,
+    block<kChannels, BN, CON, join<skip1, up1, dlib::upsample<2,
+    block<kChannels, BN, CON, join<skip2, up2, dlib::upsample<2,
+    block<2 * kChannels, BN, CON, join<skip3, up3, dlib::upsample<2,
+    block<4 * kChannels, BN, CON, dlib::max_pool<2, 2, 2, 2,
+    skip3<block<4 * kChannels, BN, CON, dlib::max_pool<2, 2, 2, 2,
+    skip2<block<2 * kChannels, BN, CON, dlib::max_pool<2, 2, 2, 2,
+    skip1<block<kChannels, BN, CON, dlib::input_rgb_image>>>>>>>>>>>>>>>>>>>>;
+// Trained with oneDNN's convolutions (dnnl_con.h), saved and checked with dlib's: the same parameters.
+using TrainNet = dlib::loss_binary_log_per_pixel<unet<dlib::bn_con, dnnl_con>>;
+using RunNet = dlib::loss_binary_log_per_pixel<unet<dlib::affine, dlib_con>>;
 
 // Raw bytes at the start of every model file (before dlib's serialisation), and the format version.
 constexpr char kMagic[] = "BODYREC-MASKNET\n";

@@ -1,9 +1,10 @@
 // Body contours from a per-pixel body mask: a small fully convolutional network (a U-Net trained with
-// dlib's DNN on the CPU, run with oneDNN: unet_runner.h) labels every pixel of a person's box as body or background, and the landmarks are that mask's
-// outline sampled exactly as the training contours were (contour_from_mask: point 0 at the head top,
-// clockwise, equally spaced by arc length). Regressing the N coordinates directly (the thesis's regression
-// trees) makes points slide along the outline wherever a leg or arm gap changes its length; a mask carries
-// the gap, and the numbering follows from it (docs/benchmarks.md, "Body-contour landmarks").
+// dlib's DNN on the CPU, its convolutions computed by oneDNN: dnnl_con.h; run with oneDNN: unet_runner.h)
+// labels every pixel of a person's box as body or background, and the landmarks are that mask's outline
+// sampled exactly as the training contours were (contour_from_mask: point 0 at the head top, clockwise,
+// equally spaced by arc length). Regressing the N coordinates directly (the thesis's regression trees)
+// makes points slide along the outline wherever a leg or arm gap changes its length; a mask carries the
+// gap, and the numbering follows from it (docs/benchmarks.md, "Body-contour landmarks").
 #pragma once
 
 #include <iosfwd>
@@ -26,7 +27,7 @@ struct MaskNetTrainOptions {
   int iterations = 3000;           // mini-batches
   int batch = 16;                  // crops per mini-batch
   double learning_rate = 1.2e-2;   // peak of the schedule (10 % warm-up, then cosine to ~0)
-  double weight_decay = 0;         // Adam's L2 penalty on the weights (5e-4: docs/benchmarks.md)
+  double weight_decay = 0;         // Adam's L2 penalty on the weights and biases (5e-4: docs/benchmarks.md)
   double threshold = 0.5;          // logit above which a pixel is body (stored in the model)
   double box_jitter = 0.03;        // std-dev of the box's shift (x; half of it in y) and log-size, per box side
   unsigned seed = 0;               // augmentation draws (network k: seed + k)

@@ -9,7 +9,8 @@
 #include <unordered_map>
 
 #include <oneapi/dnnl/dnnl.hpp>
-#include <omp.h>
+
+#include "bodyrec/landmarks/one_omp_thread.h"
 
 namespace bodyrec {
 namespace {
@@ -48,23 +49,6 @@ void join(Tensor& skip, Tensor& below, Tensor& out) {
     }
   }
 }
-
-// oneDNN parallelises with OpenMP. A pass runs on one thread, so that passes can run side by side on
-// OpenCV's threads without each starting a team over every core; the calling thread's OpenMP setting is
-// put back afterwards (it may be an application's own). Held while the primitives are made too: oneDNN's
-// convolutions fix their thread count then, and one made for two threads starts a team of two at every
-// call whatever the caller's setting; its spinning threads then fight whatever else runs for the cores
-// (two processes fitting on two cores: 11 ms per person each instead of 3; docs/benchmarks.md).
-class OneOmpThread {
- public:
-  OneOmpThread() : before_(omp_get_max_threads()) { omp_set_num_threads(1); }
-  ~OneOmpThread() { omp_set_num_threads(before_); }
-  OneOmpThread(const OneOmpThread&) = delete;
-  OneOmpThread& operator=(const OneOmpThread&) = delete;
-
- private:
-  int before_;
-};
 
 }  // namespace
 
