@@ -104,6 +104,12 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
+size_t process_threads() {
+  size_t n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) n += entry.is_directory();
+  return n;
+}
+
 void expect_one_line_error(const RunResult& r, int code, const std::string& names) {
   EXPECT_EQ(r.exit_code, code) << r.err;
   EXPECT_EQ(lines_of(r.err).size(), 1u) << r.err;

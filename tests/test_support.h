@@ -67,6 +67,10 @@ bool contains(const std::string& text, const std::string& part);
 // The lines of `text` (without their newlines).
 std::vector<std::string> lines_of(const std::string& text);
 
+// Threads of this process (Linux: one entry per thread in /proc/self/task): to check that code starts no
+// thread pool of its own.
+size_t process_threads();
+
 // A failed command as the README promises: exit `code`, exactly one line on stderr starting with
 // "bodyrec: error: " and containing `names` (the file, frame or field at fault).
 void expect_one_line_error(const RunResult& r, int code, const std::string& names);

@@ -104,14 +104,13 @@ void add(CLI::App& app) {
       "landmark over the outlines at five thresholds (--threshold-offsets), then applies a linear\n"
       "correction of the whole shape learnt on the training people's fits (ridge regression, stored in\n"
       "the model; eval landmarks --no-correction). Its target masks are the filled\n"
-      "landmark polygons. dlib trains the network, its convolutions computed by oneDNN (one thread per\n"
-      "network), the rest by dlib's and the BLAS library's code (OPENBLAS_NUM_THREADS; where OpenBLAS falls\n"
-      "back to its SSE3 kernels on a CPU it does not know, bodyrec switches it to its AVX2 or AVX-512 ones;\n"
-      "OPENBLAS_CORETYPE overrides; the kernels used are printed). --networks 2 (the\n"
-      "default) trains two networks side by side, one thread each (OpenBLAS set to one thread meanwhile),\n"
-      "and fitting averages their logits: on the Penn-Fudan test split 5.98 % of box height (6.11-6.15 %\n"
-      "for pairs trained before with dlib's own convolutions) against 6.23 % with --networks 1, for 1.4x\n"
-      "the fitting time (docs/benchmarks.md). trees: the thesis's\n"
+      "landmark polygons. dlib trains the network, its convolutions computed by oneDNN, one thread per\n"
+      "network. --networks 2 (the default) trains two networks side by side and fitting averages their\n"
+      "logits: on the Penn-Fudan test split 6.11 % of box height against 6.23 % with --networks 1 (both\n"
+      "trained with dlib's own convolutions; the pair trained with oneDNN's: 5.98 %), for 1.4x the fitting\n"
+      "time (docs/benchmarks.md). Where OpenBLAS falls back to its SSE3 kernels on a CPU it does not know,\n"
+      "bodyrec switches it to its AVX2 or AVX-512 ones (OPENBLAS_CORETYPE overrides; the kernels are\n"
+      "printed); the mask network's training no longer calls BLAS. trees: the thesis's\n"
       "dlib regression trees; the thesis used --oversampling 500 --nu 0.05 --tree-depth 2 and dlib's other\n"
       "defaults; tuned on Penn-Fudan: --oversampling 40 --trees-per-level 100. Figures for both:\n"
       "docs/benchmarks.md.\n"
@@ -128,7 +127,7 @@ void add(CLI::App& app) {
   sub->add_option("--batch", o.net.batch, "mask-net: crops per mini-batch")->capture_default_str();
   sub->add_option("--learning-rate", o.net.learning_rate, "mask-net: peak learning rate (Adam; warm-up, then cosine)")
       ->capture_default_str();
-  sub->add_option("--weight-decay", o.net.weight_decay, "mask-net: L2 penalty on the weights and biases (Adam's)")
+  sub->add_option("--weight-decay", o.net.weight_decay, "mask-net: L2 penalty on the weights (Adam's)")
       ->capture_default_str();
   sub->add_option("--mask-threshold", o.net.threshold, "mask-net: logit above which a pixel is body (kept in the model)")
       ->capture_default_str();

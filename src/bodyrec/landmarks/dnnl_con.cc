@@ -15,6 +15,7 @@ namespace {
 using dnnl::memory;
 using Shape = std::array<long, 4>;  // n, c, h, w of the input
 
+// oneDNN's memory objects take non-const pointers; the tensors passed through this are only read.
 float* data(const dlib::tensor& t) { return const_cast<float*>(t.host()); }
 
 }  // namespace
@@ -108,6 +109,14 @@ struct DnnlConvolution::Impl {
       throw std::invalid_argument("DnnlConvolution: " + std::to_string(params.size()) + " parameters for " +
                                   std::to_string(input.k()) + " input channels");
   }
+  void check_gradients(const dlib::tensor& output_grad, const dlib::tensor& input, const dlib::tensor& params,
+                       const dlib::tensor& input_grad, const dlib::tensor& params_grad) const {
+    check(input, params);
+    if (output_grad.num_samples() != input.num_samples() || output_grad.k() != filters ||
+        output_grad.nr() != input.nr() || output_grad.nc() != input.nc() || input_grad.size() != input.size() ||
+        params_grad.size() != params.size())
+      throw std::invalid_argument("DnnlConvolution: gradients of other shapes than the input, output and parameters");
+  }
 };
 
 DnnlConvolution::DnnlConvolution(long filters, long size) : impl_(std::make_unique<Impl>()) {
@@ -136,7 +145,7 @@ void DnnlConvolution::forward(const dlib::tensor& input, const dlib::tensor& par
 void DnnlConvolution::backward(const dlib::tensor& output_grad, const dlib::tensor& input, const dlib::tensor& params,
                                dlib::tensor& input_grad, dlib::tensor& params_grad) {
   Impl& m = *impl_;
-  m.check(input, params);
+  m.check_gradients(output_grad, input, params, input_grad, params_grad);
   const OneOmpThread one_thread;
   Impl::Primitives& p = m.primitives(input);
   const size_t weight_count = p.weights.user.get_size() / sizeof(float);

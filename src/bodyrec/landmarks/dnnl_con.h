@@ -4,13 +4,11 @@
 // from std::rand(), same layout: filters then biases) and converts to it, so a network trained with it
 // copies into one made of dlib::con_ layers (mask_net.cc's RunNet) and saves as dlib would.
 // Square filters, stride 1, padding size / 2 (dlib::con_'s defaults). One thread per call (OneOmpThread).
-// dlib's solvers see a layer of their own kind: Adam's weight decay, when set, applies to its biases too
-// (dlib's con_ exempts biases); bodyrec trains without weight decay by default.
+// Train with ConAwareAdam below: dlib's own Adam would not know the layer and decay its biases too.
 #pragma once
 
 #include <iosfwd>
 #include <memory>
-#include <string>
 
 #include <dlib/dnn.h>
 
@@ -49,6 +47,8 @@ class dnnl_con_ {
     return *this;
   }
   operator dlib_layer() const { return layer_; }
+  const dlib_layer& layer() const { return layer_; }
+  void clean() { conv_.reset(); }  // dlib's net.clean(): the primitives and their buffers go
 
   template <typename SUBNET>
   void setup(const SUBNET& sub) { layer_.setup(sub); }
@@ -85,5 +85,17 @@ class dnnl_con_ {
 
 template <long F, long K, typename SUBNET>
 using dnnl_con = dlib::add_layer<dnnl_con_<F, K>, SUBNET>;
+
+// dlib's Adam, updating a dnnl_con_ exactly as it updates the dlib::con_ inside it (weight decay and the
+// learning-rate multipliers as dlib::con_ sets them: none on the biases' decay).
+class ConAwareAdam : public dlib::adam {
+ public:
+  using dlib::adam::adam;
+  using dlib::adam::operator();
+  template <long F, long K>
+  const dlib::tensor& operator()(const float learning_rate, const dnnl_con_<F, K>& l, const dlib::tensor& params_grad) {
+    return dlib::adam::operator()(learning_rate, l.layer(), params_grad);
+  }
+};
 
 }  // namespace bodyrec

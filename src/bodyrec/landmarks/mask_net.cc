@@ -401,9 +401,9 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   struct Learner {
     std::mt19937 rng;
     TrainNet net;
-    dlib::dnn_trainer<TrainNet, dlib::adam> trainer;
+    dlib::dnn_trainer<TrainNet, ConAwareAdam> trainer;
     Learner(unsigned seed, float weight_decay)
-        : rng(seed), trainer(net, dlib::adam(weight_decay, 0.9f, 0.999f)) {}
+        : rng(seed), trainer(net, ConAwareAdam(weight_decay, 0.9f, 0.999f)) {}
   };
   std::vector<std::unique_ptr<Learner>> learners;  // the trainers hold references to the networks
   for (int k = 0; k < options.networks; ++k) {
@@ -420,6 +420,8 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   // process is the one `bodyrec train-shape` makes. The networks are set up one after another (the first
   // step of each waited for), so that each starts from the same weights in every run.
   std::srand(1);
+  // A safeguard since the convolutions moved to oneDNN (dnnl_con.h): none of these layers calls BLAS now,
+  // but when one did, OpenBLAS's threads per call and trainer made the pair 3.5x slower.
   std::optional<OneBlasThread> one_blas_thread;
   if (learners.size() > 1) one_blas_thread.emplace();
   for (int t = 0; t < options.iterations; ++t) {

@@ -27,7 +27,7 @@ struct MaskNetTrainOptions {
   int iterations = 3000;           // mini-batches
   int batch = 16;                  // crops per mini-batch
   double learning_rate = 1.2e-2;   // peak of the schedule (10 % warm-up, then cosine to ~0)
-  double weight_decay = 0;         // Adam's L2 penalty on the weights and biases (5e-4: docs/benchmarks.md)
+  double weight_decay = 0;         // Adam's L2 penalty on the weights (5e-4: docs/benchmarks.md)
   double threshold = 0.5;          // logit above which a pixel is body (stored in the model)
   double box_jitter = 0.03;        // std-dev of the box's shift (x; half of it in y) and log-size, per box side
   unsigned seed = 0;               // augmentation draws (network k: seed + k)
