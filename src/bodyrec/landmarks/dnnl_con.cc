@@ -151,12 +151,15 @@ void DnnlConvolution::backward(const dlib::tensor& output_grad, const dlib::tens
   const size_t weight_count = p.weights.user.get_size() / sizeof(float);
   float* grad = params_grad.host();
   const auto in = [&](Impl::Operand& o, const dlib::tensor& t) { return o.use(data(t), true, m.engine, m.stream); };
+  // Both passes read the output's gradient: copied once when they want it in the same layout.
+  const memory diff_dst = in(p.diff_dst_w, output_grad);
+  const bool same_layout = p.diff_dst_d.wanted == p.diff_dst_w.wanted;
   p.backward_weights.execute(m.stream, {{DNNL_ARG_SRC, in(p.bwd_src, input)},
-                                        {DNNL_ARG_DIFF_DST, in(p.diff_dst_w, output_grad)},
+                                        {DNNL_ARG_DIFF_DST, diff_dst},
                                         {DNNL_ARG_DIFF_WEIGHTS, p.diff_weights.use(grad, false, m.engine, m.stream)},
                                         {DNNL_ARG_DIFF_BIAS, memory(p.bias, m.engine, grad + weight_count)}});
   p.diff_weights.out(grad, m.engine, m.stream);
-  p.backward_data.execute(m.stream, {{DNNL_ARG_DIFF_DST, in(p.diff_dst_d, output_grad)},
+  p.backward_data.execute(m.stream, {{DNNL_ARG_DIFF_DST, same_layout ? diff_dst : in(p.diff_dst_d, output_grad)},
                                      {DNNL_ARG_WEIGHTS, in(p.bwd_weights, params)},
                                      {DNNL_ARG_DIFF_SRC, p.diff_src.use(p.input_grad.data(), false, m.engine, m.stream)}});
   p.diff_src.out(p.input_grad.data(), m.engine, m.stream);

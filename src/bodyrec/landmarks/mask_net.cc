@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <istream>
-#include <optional>
 #include <ostream>
 #include <random>
 
@@ -15,7 +14,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
-#include "bodyrec/core/openblas.h"
 #include "bodyrec/landmarks/contour.h"
 #include "bodyrec/landmarks/dnnl_con.h"
 #include "bodyrec/landmarks/leg_gap.h"
@@ -420,10 +418,6 @@ BodyMaskNet train_body_mask_net(const LandmarkDataset& data, const MaskNetTrainO
   // process is the one `bodyrec train-shape` makes. The networks are set up one after another (the first
   // step of each waited for), so that each starts from the same weights in every run.
   std::srand(1);
-  // A safeguard since the convolutions moved to oneDNN (dnnl_con.h): none of these layers calls BLAS now,
-  // but when one did, OpenBLAS's threads per call and trainer made the pair 3.5x slower.
-  std::optional<OneBlasThread> one_blas_thread;
-  if (learners.size() > 1) one_blas_thread.emplace();
   for (int t = 0; t < options.iterations; ++t) {
     for (size_t k = 0; k < learners.size(); ++k) {
       Learner& l = *learners[k];

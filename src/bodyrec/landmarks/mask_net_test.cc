@@ -118,8 +118,8 @@ TEST(MaskNet, TrainingIsReproducibleInOneProcess) {
 TEST(MaskNet, NetworksTrainSideBySideReproducibly) {
   const LandmarkDataset data = drawn_people(6, 300);
   MaskNetTrainOptions o = small_net(4).net;
-  // OpenBLAS runs one thread per call while trainers run side by side (and as before afterwards); the
-  // single network is trained so too, since the threads change the sums' order and so the last bits.
+  // Training leaves OpenBLAS's thread count as it was. (The single network is trained under one BLAS
+  // thread as the pair's networks were while dlib's convolutions ran on BLAS; no BLAS call is left now.)
   const auto get_blas = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
   const int blas_threads = get_blas ? get_blas() : 0;
   const BodyMaskNet one = [&] {
