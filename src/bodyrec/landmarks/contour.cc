@@ -58,10 +58,16 @@ std::vector<cv::Point2d> points_at_arc(const std::vector<cv::Point2d>& closed, c
   const std::vector<double> cumulative = cumulative_arc(closed);
   const double total = cumulative[m];
   out.reserve(at.size());
+  // `after`: the first cumulative length above s. Fractions come mostly in ascending order (resampling,
+  // the arc offsets), so it is found by stepping on from the last one's, and searched for otherwise.
+  size_t after = 1;
+  double last = -1;
   for (double f : at) {
     const double s = total * (f - std::floor(f));
-    const size_t segment = std::min(
-        m - 1, static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin()) - 1);
+    if (s < last) after = static_cast<size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), s) - cumulative.begin());
+    while (after <= m && cumulative[after] <= s) ++after;
+    last = s;
+    const size_t segment = std::min(m - 1, after - 1);
     const double length = cumulative[segment + 1] - cumulative[segment];
     const double t = length > 0 ? (s - cumulative[segment]) / length : 0.0;
     const cv::Point2d& a = closed[segment];
@@ -77,24 +83,44 @@ std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed,
   return points_at_arc(closed, at);
 }
 
-BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options) {
-  CV_Assert(mask.type() == CV_8UC1);
-  BodyContour result;
-  cv::Mat binary = mask != 0;
+namespace {
+
+// The outer border of the largest 8-connected component of `binary`; empty when it has none. One
+// component (nearly every body mask): its border traced on the mask itself, the very outline the labelled
+// component gives; several: labelled first. Labelling costs twice the tracing on fitting's small masks,
+// and fitting traces five outlines per person.
+std::vector<cv::Point> largest_component_outline(const cv::Mat& binary) {
+  std::vector<std::vector<cv::Point>> borders;
+  std::vector<cv::Vec4i> hierarchy;
+  // RETR_CCOMP puts each component's outer border at the top level, also those inside another's hole.
+  cv::findContours(binary, borders, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
+  size_t outer = 0, components = 0;
+  for (size_t i = 0; i < borders.size(); ++i)
+    if (hierarchy[i][3] < 0) {
+      outer = i;
+      ++components;
+    }
+  if (components == 0) return {};
+  if (components == 1) return std::move(borders[outer]);
+
   cv::Mat labels, stats, centroids;
   const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S);
-  if (count < 2) return result;
   int largest = 1;
   for (int i = 2; i < count; ++i)
     if (stats.at<int>(i, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = i;
-  const cv::Mat component = labels == largest;
-
-  std::vector<std::vector<cv::Point>> outlines;
-  cv::findContours(component, outlines, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  if (outlines.empty()) return result;
-  const auto& outline = *std::max_element(outlines.begin(), outlines.end(), [](const auto& a, const auto& b) {
+  cv::findContours(labels == largest, borders, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  return std::move(*std::max_element(borders.begin(), borders.end(), [](const auto& a, const auto& b) {
     return cv::contourArea(a) < cv::contourArea(b);
-  });
+  }));
+}
+
+}  // namespace
+
+BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options) {
+  CV_Assert(mask.type() == CV_8UC1);
+  BodyContour result;
+  const std::vector<cv::Point> outline = largest_component_outline(mask != 0);
+  if (outline.empty()) return result;
   result.bounds = cv::boundingRect(outline);
 
   int on_border = 0;

@@ -57,6 +57,21 @@ TEST(Contour, TopmostTiesGoLeftAndLargestComponentWins) {
   EXPECT_GT(signed_area2(c.points), 0);
 }
 
+TEST(Contour, AHoleLeavesTheOutlineAndALargerComponentInAnothersHoleWins) {
+  // A square with a hole: the outline is the square's, as without the hole.
+  cv::Mat holed = square_mask();
+  cv::rectangle(holed, cv::Rect(20, 30, 20, 20), 0, cv::FILLED);
+  EXPECT_EQ(contour_from_mask(holed, options(12)).points, contour_from_mask(square_mask(), options(12)).points);
+  // A one-pixel ring (x 5..64, y 15..74: 236 pixels) around the square (1600 pixels) in its hole: the
+  // square is the largest component although the ring encloses it.
+  cv::Mat ringed = square_mask();
+  cv::rectangle(ringed, cv::Rect(5, 15, 60, 60), 255, 1);
+  const BodyContour c = contour_from_mask(ringed, options(4));
+  ASSERT_EQ(c.status, ContourStatus::kOk);
+  EXPECT_EQ(c.bounds, cv::Rect(10, 20, 40, 40));
+  EXPECT_EQ(c.points, contour_from_mask(square_mask(), options(4)).points);
+}
+
 TEST(Contour, SkipsSmallBorderAndEmpty) {
   ContourOptions o = options(10);
   o.min_height = 41;
@@ -145,6 +160,12 @@ TEST(Contour, PointsAtArcAndProjections) {
   const PolylineProjection b = project_to_closed_polyline({-2, 6}, square);  // beside the closing side
   EXPECT_DOUBLE_EQ(b.distance, 2.0);
   EXPECT_DOUBLE_EQ(b.arc, 0.85);
+  // A repeated vertex (a zero-length segment) and fractions out of order give the same points.
+  const std::vector<cv::Point2d> repeated = {{0, 0}, {10, 0}, {10, 0}, {10, 10}, {0, 10}};
+  const std::vector<cv::Point2d> q = points_at_arc(repeated, {0.3, 0.25, 0.1, 0.9, 0.5});
+  const std::vector<cv::Point2d> expected = {{10, 2}, {10, 0}, {4, 0}, p[3], {10, 10}};
+  ASSERT_EQ(q.size(), expected.size());
+  for (size_t i = 0; i < q.size(); ++i) EXPECT_NEAR(cv::norm(q[i] - expected[i]), 0, 1e-12) << i;
   // resample_closed is points_at_arc at k / n.
   EXPECT_EQ(resample_closed(square, 8), points_at_arc(square, {0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875}));
 }
