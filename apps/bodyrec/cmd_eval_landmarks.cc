@@ -1,6 +1,5 @@
 // `bodyrec eval landmarks`: landmark error of a shape model inside the ground-truth boxes of an imglab set.
 #include <cstdio>
-#include <optional>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/sinks.h"
@@ -9,23 +8,19 @@
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "command.h"
 #include "landmark_report.h"
+#include "shape_fitting_options.h"
 
 namespace bodyrec::cli {
 namespace {
 
 struct EvalLandmarksCommand {
   std::string xml, shape, per_person;
-  std::optional<double> mask_threshold;
-  std::vector<double> threshold_offsets;
-  bool json = false, no_mirror = false, no_correction = false, no_leg_slit = false;
+  ShapeFittingOptions fitting;
+  bool json = false;
 
   void run() const {
     BodyShapeModel model(shape);
-    if (mask_threshold) model.set_mask_threshold(*mask_threshold);
-    if (!threshold_offsets.empty()) model.set_threshold_offsets(threshold_offsets);
-    if (no_mirror) model.set_mirror_average(false);
-    if (no_correction) model.set_shape_correction(false);
-    if (no_leg_slit) model.set_leg_slit(false);
+    fitting.apply(model);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
     std::vector<PersonLandmarkError> errors;
@@ -60,21 +55,7 @@ void add(CLI::App& eval) {
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
   sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
-  sub->add_option("--mask-threshold", command->mask_threshold,
-                  "mask-net models: score with this logit threshold instead of the model's (for tuning on a "
-                  "held-out set)");
-  sub->add_option("--threshold-offsets", command->threshold_offsets,
-                  "mask-net models: average each landmark over the outlines at the threshold plus each of these "
-                  "logits (default -2,-1,0,1,2; 0 = one outline)")
-      ->delimiter(',');
-  sub->add_flag("--no-mirror", command->no_mirror,
-                "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
-                "image's (for comparison)");
-  sub->add_flag("--no-leg-slit", command->no_leg_slit,
-                "mask-net models: trace each outline without the slit cut between the legs where the logits dip "
-                "(for comparison)");
-  sub->add_flag("--no-correction", command->no_correction,
-                "mask-net models: leave out the model's linear shape correction (for comparison)");
+  add_shape_fitting_options(*sub, command->fitting);
   sub->add_option("--per-person", command->per_person,
                   "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "
                   "contour_px); `bodyrec report --eval FILE` draws their histogram");

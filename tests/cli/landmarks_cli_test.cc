@@ -153,6 +153,26 @@ TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {
     EXPECT_EQ(p["landmarks"][0].size(), 2u);
   }
   EXPECT_TRUE(fs::exists(path("annotated/000000.png")));
+
+  // With a mask-net model, the fast fit (the box alone, one outline) places other landmarks on the same people.
+  const RunResult t = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("fastnet.dat").string(),
+                                   "--iterations", "40", "--net-size", "24x64", "--batch", "8", "--networks", "1"});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  std::vector<nlohmann::json> rows;
+  for (const bool fast : {false, true}) {
+    std::vector<std::string> args = {"landmark", path("set/images/P00.png").string(), "--shape",
+                                     path("fastnet.dat").string(), "--detector", path("det.svm").string(), "-q"};
+    if (fast) args.insert(args.end(), {"--no-mirror", "--threshold-offsets", "0"});
+    const RunResult f = run_bodyrec(args);
+    ASSERT_EQ(f.exit_code, 0) << f.err;
+    rows.push_back(last_json_line(f.out));
+  }
+  ASSERT_EQ(rows[1]["people"].size(), row["people"].size());
+  for (size_t i = 0; i < row["people"].size(); ++i) {
+    EXPECT_EQ(rows[1]["people"][i]["box"], rows[0]["people"][i]["box"]);
+    ASSERT_EQ(rows[1]["people"][i]["landmarks"].size(), 30u);
+    EXPECT_NE(rows[1]["people"][i]["landmarks"], rows[0]["people"][i]["landmarks"]);
+  }
 }
 
 TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
@@ -222,6 +242,9 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"eval", "landmarks", path("set/test.xml").string(), "--shape", shape, "--no-leg-slit"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--no-leg-slit applies to mask-net models only")) << r.err;
+  r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--no-mirror"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--no-mirror applies to mask-net models only")) << r.err;
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
                    path("v.xml").string()});
   EXPECT_EQ(r.exit_code, 2);

@@ -1,0 +1,30 @@
+#include "shape_fitting_options.h"
+
+namespace bodyrec::cli {
+
+void ShapeFittingOptions::apply(BodyShapeModel& model) const {
+  if (mask_threshold) model.set_mask_threshold(*mask_threshold);
+  if (!threshold_offsets.empty()) model.set_threshold_offsets(threshold_offsets);
+  if (no_mirror) model.set_mirror_average(false);
+  if (no_leg_slit) model.set_leg_slit(false);
+  if (no_correction) model.set_shape_correction(false);
+}
+
+void add_shape_fitting_options(CLI::App& sub, ShapeFittingOptions& options) {
+  sub.add_option("--mask-threshold", options.mask_threshold,
+                 "mask-net models: the logit above which a pixel is body, instead of the model's (tune it on a "
+                 "held-out set)");
+  sub.add_option("--threshold-offsets", options.threshold_offsets,
+                 "mask-net models: average each landmark over the outlines at the threshold plus each of these "
+                 "logits (default -2,-1,0,1,2; 0 = one outline: faster, less accurate)")
+      ->delimiter(',');
+  sub.add_flag("--no-mirror", options.no_mirror,
+               "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
+               "image's (half the network passes: faster, slightly less accurate)");
+  sub.add_flag("--no-leg-slit", options.no_leg_slit,
+               "mask-net models: trace each outline without the slit cut between the legs where the logits dip");
+  sub.add_flag("--no-correction", options.no_correction,
+               "mask-net models: leave out the model's linear shape correction");
+}
+
+}  // namespace bodyrec::cli
