@@ -85,15 +85,15 @@ std::vector<cv::Point2d> resample_closed(const std::vector<cv::Point2d>& closed,
 
 namespace {
 
-// The outer border of the largest 8-connected component of `binary`; empty when it has none. One
-// component (nearly every body mask): its border traced on the mask itself, the very outline the labelled
-// component gives; several: labelled first. Labelling costs twice the tracing on fitting's small masks,
-// and fitting traces five outlines per person.
-std::vector<cv::Point> largest_component_outline(const cv::Mat& binary) {
+// The outer border of the largest 8-connected component of `mask` (non-zero = in, as findContours and
+// connectedComponents read it); empty when it has none. One component (nearly every body mask): its border
+// traced on the mask itself, the very outline the labelled component gives; several: labelled first.
+// Labelling costs twice the tracing on fitting's small masks, and fitting traces five outlines per person.
+std::vector<cv::Point> largest_component_outline(const cv::Mat& mask) {
   std::vector<std::vector<cv::Point>> borders;
   std::vector<cv::Vec4i> hierarchy;
   // RETR_CCOMP puts each component's outer border at the top level, also those inside another's hole.
-  cv::findContours(binary, borders, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
+  cv::findContours(mask, borders, hierarchy, cv::RETR_CCOMP, cv::CHAIN_APPROX_NONE);
   size_t outer = 0, components = 0;
   for (size_t i = 0; i < borders.size(); ++i)
     if (hierarchy[i][3] < 0) {
@@ -104,14 +104,13 @@ std::vector<cv::Point> largest_component_outline(const cv::Mat& binary) {
   if (components == 1) return std::move(borders[outer]);
 
   cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S);
+  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   int largest = 1;
   for (int i = 2; i < count; ++i)
     if (stats.at<int>(i, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = i;
+  // One 8-connected component has one outer border.
   cv::findContours(labels == largest, borders, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-  return std::move(*std::max_element(borders.begin(), borders.end(), [](const auto& a, const auto& b) {
-    return cv::contourArea(a) < cv::contourArea(b);
-  }));
+  return std::move(borders.front());
 }
 
 }  // namespace
@@ -119,7 +118,7 @@ std::vector<cv::Point> largest_component_outline(const cv::Mat& binary) {
 BodyContour contour_from_mask(const cv::Mat& mask, const ContourOptions& options) {
   CV_Assert(mask.type() == CV_8UC1);
   BodyContour result;
-  const std::vector<cv::Point> outline = largest_component_outline(mask != 0);
+  const std::vector<cv::Point> outline = largest_component_outline(mask);
   if (outline.empty()) return result;
   result.bounds = cv::boundingRect(outline);
 
