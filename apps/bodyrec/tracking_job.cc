@@ -3,7 +3,6 @@
 #include <chrono>
 #include <optional>
 
-#include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/annotate.h"
@@ -11,18 +10,6 @@
 #include "run_sinks.h"
 
 namespace bodyrec::cli {
-namespace {
-
-// A stable, well-spread colour per id (golden-angle hue steps).
-cv::Scalar id_color(int id) {
-  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((id * 137) % 180, 220, 255)), bgr;
-  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
-  const auto c = bgr.at<cv::Vec3b>(0, 0);
-  return cv::Scalar(c[0], c[1], c[2]);
-}
-
-}  // namespace
-
 void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
   TrackerOptions& t = o.tracker;
   sub.add_option("--detect-every", o.detect_every,

@@ -175,6 +175,46 @@ TEST_F(LandmarkCommands, TrainDetectorThenLandmarkImages) {
   }
 }
 
+// After TrainDetectorThenLandmarkImages (its detector): --track gives each person an id that holds across
+// frames, fits the shape in the track's box, and writes the tracks as MOT rows.
+TEST_F(LandmarkCommands, TrackGivesIdsAcrossFrames) {
+  ASSERT_TRUE(fs::exists(path("det.svm")));
+  fs::create_directories(path("frames"));
+  for (int i = 0; i < 6; ++i)  // the same image six times: one person standing still
+    fs::copy_file(path("set/images/P00.png"), path("frames/f" + std::to_string(i) + ".png"));
+  const std::vector<std::string> common = {"landmark", path("frames").string(), "--shape", path("shape.dat").string(),
+                                           "--detector", path("det.svm").string(), "-q"};
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--track", "--min-score", "0", "--new-track-score", "0", "--mot", path("mot.txt").string()});
+  const RunResult r = run_bodyrec(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RunResult plain = run_bodyrec(common);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const std::vector<std::string> rows = lines_of(r.out), plain_rows = lines_of(plain.out);
+  ASSERT_EQ(rows.size(), 6u);
+  ASSERT_EQ(plain_rows.size(), 6u);
+  const auto first = nlohmann::json::parse(plain_rows[0])["people"];
+  ASSERT_EQ(first.size(), 1u);
+  // Tentative on frames 0 and 1 (not reported), confirmed with id 1 from the third detection on.
+  for (int f = 0; f < 6; ++f) {
+    const auto row = nlohmann::json::parse(rows[static_cast<size_t>(f)]);
+    EXPECT_EQ(row["frame"], f);
+    const auto people = row["people"];
+    ASSERT_EQ(people.size(), f < 2 ? 0u : 1u) << "frame " << f;
+    if (f < 2) continue;
+    EXPECT_EQ(people[0]["id"], 1);
+    EXPECT_EQ(people[0]["state"], "confirmed");
+    EXPECT_FALSE(people[0].contains("score"));
+    EXPECT_EQ(people[0]["landmarks"].size(), 30u);
+    for (size_t k = 0; k < 4; ++k)  // the filtered box of a still person: where the detector puts it
+      EXPECT_NEAR(people[0]["box"][k].get<double>(), first[0]["box"][k].get<double>(), 3.0) << "frame " << f;
+  }
+  const std::vector<std::string> mot = lines_of(read_text(path("mot.txt")));
+  ASSERT_EQ(mot.size(), 4u);  // frames 2-5, 1-based in MOT
+  EXPECT_EQ(mot[0].substr(0, 4), "3,1,");
+  EXPECT_EQ(mot[3].substr(0, 4), "6,1,");
+}
+
 TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
   const std::string shape = path("shape.dat").string();
@@ -245,6 +285,16 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--no-mirror"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--no-mirror applies to mask-net models only")) << r.err;
+  // MOT rows need ids, and tracker options need the tracker: usage errors (2).
+  r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--mot", path("m.txt").string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--track")) << r.err;
+  r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--min-hits", "2"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--min-hits requires --track")) << r.err;
+  r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--track", "--min-hits", "0"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "min_hits must be >= 1")) << r.err;
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
                    path("v.xml").string()});
   EXPECT_EQ(r.exit_code, 2);

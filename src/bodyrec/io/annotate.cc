@@ -4,6 +4,13 @@
 
 namespace bodyrec {
 
+cv::Scalar id_color(int id) {
+  cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((id * 137) % 180, 220, 255)), bgr;
+  cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
+  const auto c = bgr.at<cv::Vec3b>(0, 0);
+  return cv::Scalar(c[0], c[1], c[2]);
+}
+
 void draw_labelled_box(cv::Mat& image, const Box& box, const cv::Scalar& color, const std::string& label,
                        int thickness) {
   const cv::Rect r(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));

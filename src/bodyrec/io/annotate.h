@@ -15,6 +15,9 @@ const cv::Scalar kBlue(255, 0, 0), kGreen(0, 200, 0), kRed(0, 0, 255), kYellow(0
     kWhite(255, 255, 255), kBlack(0, 0, 0), kOrange(0, 165, 255);
 }
 
+// A stable, well-spread colour per track id (golden-angle hue steps), for drawing people by identity.
+cv::Scalar id_color(int id);
+
 // A rectangle with an optional label drawn on a filled tag above it.
 void draw_labelled_box(cv::Mat& image, const Box& box, const cv::Scalar& color, const std::string& label,
                        int thickness = 2);
