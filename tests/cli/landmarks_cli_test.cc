@@ -215,6 +215,37 @@ TEST_F(LandmarkCommands, TrackGivesIdsAcrossFrames) {
   EXPECT_EQ(mot[3].substr(0, 4), "6,1,");
 }
 
+// On video, landmark --track follows the people `track` follows: the same ids, states and boxes, frame by frame.
+TEST_F(LandmarkCommands, TrackFollowsWhomTheTrackCommandFollows) {
+  if (!fs::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  const std::vector<std::string> source = {vtest_path().string(), "--max-frames", "20", "-q"};
+  std::vector<std::string> args = {"landmark"};
+  args.insert(args.end(), source.begin(), source.end());
+  args.insert(args.end(), {"--shape", path("shape.dat").string(), "--track"});
+  const RunResult landmarked = run_bodyrec(args);
+  ASSERT_EQ(landmarked.exit_code, 0) << landmarked.err;
+  args = {"track"};
+  args.insert(args.end(), source.begin(), source.end());
+  const RunResult tracked = run_bodyrec(args);
+  ASSERT_EQ(tracked.exit_code, 0) << tracked.err;
+  const std::vector<std::string> a = lines_of(landmarked.out), b = lines_of(tracked.out);
+  ASSERT_EQ(a.size(), 20u);
+  ASSERT_EQ(b.size(), 20u);
+  size_t people = 0;
+  for (size_t f = 0; f < a.size(); ++f) {
+    const auto mine = nlohmann::json::parse(a[f])["people"], theirs = nlohmann::json::parse(b[f])["tracks"];
+    ASSERT_EQ(mine.size(), theirs.size()) << "frame " << f;
+    for (size_t i = 0; i < mine.size(); ++i) {
+      EXPECT_EQ(mine[i]["id"], theirs[i]["id"]) << "frame " << f;
+      EXPECT_EQ(mine[i]["state"], theirs[i]["state"]) << "frame " << f;
+      EXPECT_EQ(mine[i]["box"], theirs[i]["box"]) << "frame " << f;
+      EXPECT_EQ(mine[i]["landmarks"].size(), mine[i]["state"] == "lost" ? 0u : 30u) << "frame " << f;
+    }
+    people += mine.size();
+  }
+  EXPECT_GT(people, 20u);  // several people confirmed within 20 frames of vtest.avi
+}
+
 TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   ASSERT_EQ(shape_.exit_code, 0) << shape_.err;
   const std::string shape = path("shape.dat").string();
