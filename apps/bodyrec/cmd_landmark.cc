@@ -40,7 +40,7 @@ struct LandmarkCommand {
 
   void run() {
     if (!outputs.mot.empty() && !track) throw UsageError("landmark writes MOT output only with --track (ids)");
-    if (track) tracking.check();
+    if (track) tracking.check();  // before the model loads and the source opens
     if (detector_choice != "hog") {
       if (!detector.model_file.empty() && detector.model_file != detector_choice)
         throw UsageError("give the fHOG model with either --detector or --model, not both");
@@ -100,7 +100,10 @@ struct LandmarkCommand {
       nlohmann::json points = nlohmann::json::array();
       for (const auto& q : p.landmarks) points.push_back({q.x, q.y});
       nlohmann::json person;
-      if (p.state) person["id"] = p.id, person["state"] = to_string(*p.state);
+      if (p.state) {
+        person["id"] = p.id;
+        person["state"] = to_string(*p.state);
+      }
       person["box"] = {p.box.x, p.box.y, p.box.width, p.box.height};
       if (p.score) person["score"] = *p.score;
       person["landmarks"] = points;
@@ -152,10 +155,7 @@ void add(CLI::App& app) {
       "--track", command->track, "Track people across frames: ids, filtered boxes, the detector every --detect-every frames");
   add_output_options(*sub, command->outputs);
   add_detector_options(*sub, command->detector);
-  const size_t before = sub->get_options().size();
-  add_tracker_options(*sub, command->tracking);
-  const std::vector<CLI::Option*> options = sub->get_options();
-  for (size_t i = before; i < options.size(); ++i) options[i]->needs(track);  // tracker options need --track
+  for (CLI::Option* option : add_tracker_options(*sub, command->tracking)) option->needs(track);
   sub->callback([command] { command->run(); });
 }
 

@@ -3,14 +3,14 @@
 #include <chrono>
 #include <optional>
 
-
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
 #include "run_sinks.h"
 
 namespace bodyrec::cli {
-void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
+std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
+  const size_t before = sub.get_options().size();
   TrackerOptions& t = o.tracker;
   sub.add_option("--detect-every", o.detect_every,
                  "Run the full detector on every Nth frame (see --between for the frames in between)")
@@ -41,6 +41,8 @@ void add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
       ->capture_default_str();
   sub.add_option("--kf-measurement-noise", t.noise.measurement, "Kalman measurement noise, times box height")
       ->capture_default_str();
+  const std::vector<CLI::Option*> all = sub.get_options();  // in the order they were added
+  return {all.begin() + static_cast<std::ptrdiff_t>(before), all.end()};
 }
 
 TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, const TrackingJobOptions& options,

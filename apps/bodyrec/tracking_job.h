@@ -15,7 +15,8 @@ namespace bodyrec::cli {
 using TrackingJobOptions = DetectAndTrackOptions;
 
 // --detect-every and every TrackerOptions field (--min-hits, --max-age, --coast, --iou-gate, ...).
-void add_tracker_options(CLI::App& sub, TrackingJobOptions& options);
+// Returns the options it added (for a command where they apply only with a flag: `needs`).
+std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions& options);
 
 struct TrackingRunStats {
   int frames = 0;
