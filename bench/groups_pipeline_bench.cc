@@ -14,7 +14,7 @@
 
 #include "bench_support.h"
 #include "bodyrec/detection/hog_people_detector.h"
-#include "bodyrec/groups/group_pipeline.h"
+#include "bodyrec/groups/group_stages.h"
 #include "bodyrec/io/ground_plane.h"
 #include "bodyrec/tracking/detect_and_track.h"
 
@@ -44,7 +44,7 @@ void BM_GroupsPipeline(benchmark::State& state) {
   const auto& frames = *loaded;
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
   bodyrec::DetectAndTrack tracking(detector, {});
-  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  bodyrec::GroupStages pipeline({}, pets_ground());
   int n = 0;
   double leaders = 0;
   for (auto _ : state) {
@@ -64,7 +64,7 @@ void BM_GroupStagesOnly(benchmark::State& state) {
   bodyrec::DetectAndTrack tracking(detector, {});
   std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
   for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracking.step(static_cast<int>(i), frames[i]));
-  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  bodyrec::GroupStages pipeline({}, pets_ground());
   int n = 0;
   for (auto _ : state) {
     const size_t i = static_cast<size_t>(n) % frames.size();
@@ -82,7 +82,7 @@ void BM_GroupsSoak(benchmark::State& state) {
   for (auto _ : state) {
     bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
     bodyrec::DetectAndTrack tracking(detector, {});
-    bodyrec::GroupPipeline pipeline({}, pets_ground());
+    bodyrec::GroupStages pipeline({}, pets_ground());
     double warm = 0;
     for (int n = 0; n < state.range(0); ++n) {
       const cv::Mat& frame = frames[static_cast<size_t>(n) % frames.size()];
