@@ -21,7 +21,7 @@ int main(int argc, char** argv) try {
 
   // The shipped model, found next to the installed library (models/README.md says how it was made).
   const bodyrec::BodyShapeModel shape(
-      bodyrec::require_model_file("body-shape.dat", "reinstall bodyrec, or train one with bodyrec train-shape"));
+      bodyrec::require_model_file(bodyrec::kShippedShapeModel, "reinstall bodyrec, or train one with bodyrec train-shape"));
   bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("thesis"));
 
   const cv::Mat prepared = shape.prepare(image);

@@ -46,7 +46,7 @@ struct LandmarkCommand {
         throw UsageError("give the fHOG model with either --detector or --model, not both");
       detector.model_file = detector_choice;
     }
-    BodyShapeModel model(shape);
+    BodyShapeModel model(shape_model_path(shape));
     fitting.apply(model);
     auto frames = open_source(source);
     auto people = make_detector(detector, frames->fps().has_value());
@@ -146,7 +146,7 @@ void add(CLI::App& app) {
       "more error (Penn-Fudan validation: 5.61 against 5.50 % of the box height; docs/benchmarks.md).\n"
       "Example: bodyrec landmark photos/ --shape out/shape.dat --detector out/detector.svm --annotate out/landmarks");
   add_source_options(*sub, command->source);
-  sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  add_shape_model_option(*sub, command->shape);
   add_shape_fitting_options(*sub, command->fitting);
   sub->add_option("--detector", command->detector_choice,
                   "People detector: 'hog' (OpenCV HOG, options below) or a dlib fHOG FILE.svm")
