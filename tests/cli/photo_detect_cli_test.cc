@@ -64,12 +64,22 @@ TEST(PhotoDetectCli, BrokenPennFudanFoldersExitThreeNamingTheFile) {
   expect_one_line_error(eval_pennfudan(pf), 3, "P03_mask.png");
   cv::imwrite((pf / "PedMasks" / "P03_mask.png").string(), cv::Mat(200, 240, CV_8UC3, cv::Scalar::all(1)));
   expect_one_line_error(eval_pennfudan(pf), 3, "P03_mask.png");  // colour, not an instance mask
-  cv::imwrite((pf / "PedMasks" / "P03_mask.png").string(), cv::Mat(100, 240, CV_8UC1, cv::Scalar::all(1)));
-  expect_one_line_error(eval_pennfudan(pf, {"--preset", "opencv"}), 3, "P03_mask.png");  // not its image's size
-
   cv::imwrite((pf / "PedMasks" / "P03_mask.png").string(), cv::Mat(200, 240, CV_8UC1, cv::Scalar::all(1)));
-  write_text(pf / "PNGImages" / "P07.png", "");  // an empty image: found when it is read
-  expect_one_line_error(eval_pennfudan(pf, {"--preset", "opencv"}), 3, "P07.png");
+
+  // Found when the photo is read (the test split's second, frame 1): frame 0's output is on disk.
+  const fs::path jsonl = dir / "d.jsonl";
+  cv::imwrite((pf / "PedMasks" / "P07_mask.png").string(), cv::Mat(100, 240, CV_8UC1, cv::Scalar::all(1)));
+  expect_one_line_error(eval_pennfudan(pf, {"--preset", "opencv", "--jsonl", jsonl.string()}), 3,
+                        "P07_mask.png");  // not its image's size
+  auto lines = lines_of(read_text(jsonl));
+  ASSERT_GE(lines.size(), 1u);
+  EXPECT_EQ(nlohmann::json::parse(lines[0])["frame"], 0);
+  cv::imwrite((pf / "PedMasks" / "P07_mask.png").string(), cv::Mat(200, 240, CV_8UC1, cv::Scalar::all(1)));
+  write_text(pf / "PNGImages" / "P07.png", "");  // an empty image
+  expect_one_line_error(eval_pennfudan(pf, {"--preset", "opencv", "--jsonl", jsonl.string()}), 3, "P07.png");
+  lines = lines_of(read_text(jsonl));
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(nlohmann::json::parse(lines[0])["frame"], 0);
 
   fs::remove_all(pf / "PedMasks");
   expect_one_line_error(eval_pennfudan(pf), 3, "PedMasks");

@@ -1,6 +1,6 @@
 // People in still photos: the photo preset on the Penn-Fudan test split against OpenCV's own HOG sample
 // (docs/benchmarks.md, "People detection on Penn-Fudan photos"), and the whole people it finds on the
-// photos the README names.
+// README's photo and another.
 #include <filesystem>
 #include <string>
 
@@ -67,10 +67,10 @@ void expect_whole_people(const fs::path& root, const std::string& stem, int peop
   EXPECT_EQ(static_cast<int>(row["detections"].size()), detections) << stem;
 }
 
-TEST(PhotoDetectData, PhotoPresetFindsTheWholePeopleOnTheReadmesPhotos) {
+TEST(PhotoDetectData, PhotoPresetFindsTheWholePeopleOnNamedPhotos) {
   BODYREC_REQUIRE_DATA(root, "pennfudan/PNGImages");
   if (!have_dpm_model()) GTEST_SKIP() << "opencv-doc's inriaperson.xml missing (scripts/install-deps)";
-  expect_whole_people(root.parent_path(), "FudanPed00036", 4, 4);
+  expect_whole_people(root.parent_path(), "FudanPed00036", 4, 4);  // the README's example
   expect_whole_people(root.parent_path(), "PennPed00010", 6, 7);  // the seventh box: a person the masks leave out
 }
 
