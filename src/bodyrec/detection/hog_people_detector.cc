@@ -118,7 +118,20 @@ HogOptions hog_preset(const std::string& name) {
     o.adapt_after = 40;
     return o;
   }
-  throw UsageError("unknown preset '" + name + "' (expected 'default' or 'thesis')");
+  if (name == "opencv") {
+    // OpenCV's people detection sample (samples/cpp/peopledetect.cpp): detectMultiScale(img, found, 0,
+    // Size(8,8), Size(), 1.05, 2) on the whole image, each window then shrunk as the sample does (x + 10 %,
+    // y + 7 %, 80 % of the width and height).
+    o.hit_threshold = 0;
+    o.win_stride = 8;
+    o.padding = 0;
+    o.body_width = 0.8;
+    o.body_height = 0.8;
+    o.body_center_x = 0.5;
+    o.body_center_y = 0.47;
+    return o;
+  }
+  throw UsageError("unknown HOG preset '" + name + "' (expected 'default', 'thesis' or 'opencv')");
 }
 
 HogPeopleDetector::HogPeopleDetector(const HogOptions& options) : options_(options) {

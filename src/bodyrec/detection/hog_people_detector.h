@@ -51,7 +51,8 @@ struct HogOptions {
 };
 
 // Named presets: "thesis" (the thesis's Ch4 call: hit -0.2, stride 12, padding 16, scale 1.05, group 2,
-// original size, whole frame) and "default" (tuned on vtest.avi for AP50 per millisecond).
+// original size, whole frame), "default" (tuned on vtest.avi for AP50 per millisecond) and "opencv"
+// (OpenCV's peopledetect sample: hit 0, stride 8, no padding, scale 1.05, group 2, its window-to-body shrink).
 HogOptions hog_preset(const std::string& name);
 
 class HogPeopleDetector : public PeopleDetector {

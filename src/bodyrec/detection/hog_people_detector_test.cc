@@ -35,6 +35,22 @@ TEST(HogPreset, DefaultSearchesSixtyToHundredFortyPixelPeople) {
   EXPECT_TRUE(o.motion_roi);
 }
 
+TEST(HogPreset, OpenCvPresetIsThePeopledetectSample) {
+  const HogOptions o = hog_preset("opencv");
+  EXPECT_DOUBLE_EQ(o.hit_threshold, 0.0);
+  EXPECT_EQ(o.win_stride, 8);
+  EXPECT_EQ(o.padding, 0);
+  EXPECT_DOUBLE_EQ(o.scale, 1.05);
+  EXPECT_EQ(o.group_threshold, 2);
+  EXPECT_FALSE(o.motion_roi);
+  // The sample's shrink: x + 10 %, y + 7 %, 80 % of the width and height.
+  const Box body = HogPeopleDetector(o).body_box(Box(100, 200, 64, 128));
+  EXPECT_NEAR(body.x, 106.4, 1e-9);
+  EXPECT_NEAR(body.y, 208.96, 1e-9);
+  EXPECT_NEAR(body.width, 51.2, 1e-9);
+  EXPECT_NEAR(body.height, 102.4, 1e-9);
+}
+
 TEST(HogPreset, UnknownPresetAndBadOptionsAreUsageErrors) {
   EXPECT_THROW(hog_preset("fast"), UsageError);
   HogOptions o;
