@@ -34,18 +34,18 @@ void run(benchmark::State& state, bodyrec::PeopleDetector& detector) {
 }
 
 void BM_HogThesisPreset(benchmark::State& state) {
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("thesis"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kThesis));
   run(state, detector);
 }
 
 void BM_HogDefaultPreset(benchmark::State& state) {
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   run(state, detector);
 }
 
 // The default preset without scene-adaptive scales (every region searched at all 13 levels).
 void BM_HogDefaultPresetFixedScales(benchmark::State& state) {
-  bodyrec::HogOptions options = bodyrec::hog_preset("default");
+  bodyrec::HogOptions options = bodyrec::hog_preset(bodyrec::HogPreset::kDefault);
   options.adapt_after = 0;
   bodyrec::HogPeopleDetector detector(options);
   run(state, detector);
@@ -103,7 +103,7 @@ void BM_PhotoPresetPennFudan(benchmark::State& state) {
 }
 
 void BM_OpenCvPresetPennFudan(benchmark::State& state) {
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("opencv"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kOpenCv));
   run_photos(state, detector);
 }
 

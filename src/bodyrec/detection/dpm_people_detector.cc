@@ -8,6 +8,7 @@
 
 #include <opencv2/core/persistence.hpp>
 #include <opencv2/dpm.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/model_files.h"
@@ -151,6 +152,12 @@ DpmPeopleDetector::~DpmPeopleDetector() = default;
 
 std::vector<Detection> DpmPeopleDetector::detect_raw(const cv::Mat& frame) {
   cv::Mat image = frame;  // the detector converts its argument to doubles in place: give it its own header
+  // OpenCV's DPM fails on images under about 122 px a side (its feature pyramid has no level): pad them at the
+  // right and bottom, where no box starts, to kMinSide.
+  constexpr int kMinSide = 128;
+  if (!frame.empty() && (frame.cols < kMinSide || frame.rows < kMinSide))
+    cv::copyMakeBorder(frame, image, 0, std::max(0, kMinSide - frame.rows), 0, std::max(0, kMinSide - frame.cols),
+                       cv::BORDER_CONSTANT, cv::Scalar::all(0));
   std::vector<cv::dpm::DPMDetector::ObjectDetection> found;
   model_->detector->detect(image, found);
   std::vector<Detection> out;

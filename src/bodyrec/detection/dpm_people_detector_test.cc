@@ -105,5 +105,14 @@ TEST(DpmPeopleDetector, PhotoPresetFindsNobodyOnABlankImageAndLeavesTheImageAlon
   EXPECT_TRUE(contains(detector.describe(), "inriaperson.xml"));
 }
 
+TEST(DpmPeopleDetector, ImagesSmallerThanItsPyramidNeedsFindNobodyInsteadOfFailing) {
+  if (!std::filesystem::exists("/usr/share/doc/opencv-doc/examples/dpm/data/inriaperson.xml"))
+    GTEST_SKIP() << "opencv-doc's inriaperson.xml missing (scripts/install-deps)";
+  DpmPeopleDetector detector(dpm_photo_preset());
+  // OpenCV's DPM alone throws on these (no pyramid level, or a negative size).
+  for (const cv::Size size : {cv::Size(120, 160), cv::Size(400, 80), cv::Size(60, 60), cv::Size(1, 1)})
+    EXPECT_TRUE(detector.detect(cv::Mat(size, CV_8UC3, cv::Scalar(90, 120, 150))).empty()) << size;
+}
+
 }  // namespace
 }  // namespace bodyrec
