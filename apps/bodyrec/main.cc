@@ -9,6 +9,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/openblas.h"
 #include "command.h"
+#include "option_error_text.h"
 
 namespace {
 
@@ -46,6 +47,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);  // prints help, version or the usage error
     return rc == 0 ? 0 : static_cast<int>(bodyrec::ExitCode::kUsage);
+  } catch (const bodyrec::OptionError& e) {
+    std::cerr << "bodyrec: error: " << bodyrec::cli::option_error_text(e, app) << "\n";
+    return static_cast<int>(e.code());
   } catch (const bodyrec::Error& e) {
     std::cerr << "bodyrec: error: " << e.what() << "\n";
     return static_cast<int>(e.code());

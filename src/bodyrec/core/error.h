@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace bodyrec {
 
@@ -28,6 +29,22 @@ class Error : public std::runtime_error {
 class UsageError : public Error {
  public:
   explicit UsageError(const std::string& message) : Error(ExitCode::kUsage, message) {}
+};
+
+// A bad value in one field of an options struct, e.g. OptionError("HogOptions", "hit_threshold", "must be finite").
+// The message is "HogOptions.hit_threshold must be finite"; a front end may name its own option for the field
+// instead (the bodyrec program says "--hit-threshold must be finite").
+class OptionError : public UsageError {
+ public:
+  OptionError(std::string options, std::string field, std::string problem)
+      : UsageError(options + "." + field + " " + problem),
+        options_(std::move(options)), field_(std::move(field)), problem_(std::move(problem)) {}
+  const std::string& options() const { return options_; }
+  const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string options_, field_, problem_;
 };
 
 // Input that cannot be used: missing, unreadable, truncated, or not in the expected format.

@@ -10,10 +10,11 @@
 namespace bodyrec {
 
 void DifferentialMotionOptions::check() const {
-  if (threshold < 0 || threshold > 255) throw UsageError("motion threshold must be in 0..255");
-  if (!(max_deviation > 0)) throw UsageError("motion max deviation must be > 0");
-  if (erode < 0 || erode > 15) throw UsageError("motion erode kernel must be in 0..15");
-  if (!(work_width == 0 || work_width >= 32)) throw UsageError("motion work width must be 0 or >= 32");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("DifferentialMotionOptions", field, problem); };
+  if (threshold < 0 || threshold > 255) fail("threshold", "must be in 0..255");
+  if (!(max_deviation > 0)) fail("max_deviation", "must be > 0");
+  if (erode < 0 || erode > 15) fail("erode", "must be in 0..15");
+  if (!(work_width == 0 || work_width >= 32)) fail("work_width", "must be 0 or >= 32");
 }
 
 DifferentialMotion::DifferentialMotion(const DifferentialMotionOptions& options) : options_(options) {

@@ -109,9 +109,10 @@ std::vector<Detection> correct_detections(const std::vector<Detection>& raw, con
 }
 
 void DpmOptions::check() const {
-  if (model_path.empty()) throw UsageError("a DPM detector needs a model file");
-  if (!(correction.width > 0 && correction.height > 0)) throw UsageError("DPM box correction: sizes must be > 0");
-  if (!(nms_iou > 0 && nms_iou <= 1)) throw UsageError("--nms-iou must be in (0, 1]");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("DpmOptions", field, problem); };
+  if (model_path.empty()) fail("model_path", "is required");
+  if (!(correction.width > 0 && correction.height > 0)) fail("correction", "sizes must be > 0");
+  if (!(nms_iou > 0 && nms_iou <= 1)) fail("nms_iou", "must be in (0, 1]");
 }
 
 std::string dpm_person_model_path() {

@@ -16,9 +16,10 @@ struct FhogDetector::Model {
 };
 
 void FhogOptions::check() const {
-  if (model_path.empty()) throw UsageError("an fHOG detector needs a model file (--model FILE.svm)");
-  if (!(upsample > 0.05 && upsample <= 8)) throw UsageError("fHOG upsample factor must be in (0.05, 8]");
-  if (!(nms_iou > 0 && nms_iou <= 1)) throw UsageError("--nms-iou must be in (0, 1]");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("FhogOptions", field, problem); };
+  if (model_path.empty()) fail("model_path", "is required (a dlib fHOG .svm file)");
+  if (!(upsample > 0.05 && upsample <= 8)) fail("upsample", "must be in (0.05, 8]");
+  if (!(nms_iou > 0 && nms_iou <= 1)) fail("nms_iou", "must be in (0, 1]");
 }
 
 FhogDetector::FhogDetector(const FhogOptions& options) : options_(options), model_(std::make_unique<Model>()) {

@@ -39,10 +39,11 @@ void to_dlib(const std::vector<FhogTrainingImage>& in, bool upsample, Images& im
 }  // namespace
 
 void FhogTrainOptions::check() const {
-  if (!(C > 0)) throw UsageError("-C must be > 0");
-  if (!(epsilon > 0)) throw UsageError("--epsilon must be > 0");
-  if (target_size < 16 || target_size > 1000) throw UsageError("--target-size must be in [16, 1000]");
-  if (threads < 1) throw UsageError("--threads must be >= 1");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("FhogTrainOptions", field, problem); };
+  if (!(C > 0)) fail("C", "must be > 0");
+  if (!(epsilon > 0)) fail("epsilon", "must be > 0");
+  if (target_size < 16 || target_size > 1000) fail("target_size", "must be in [16, 1000]");
+  if (threads < 1) fail("threads", "must be >= 1");
 }
 
 FhogTrainReport train_fhog_detector(const std::vector<FhogTrainingImage>& in, const FhogTrainOptions& options,

@@ -88,18 +88,19 @@ void HogOptions::set_height_range(double min_height, double max_height) {
 }
 
 void HogOptions::check() const {
-  if (win_stride < 1) throw UsageError("--win-stride must be >= 1");
-  if (padding < 0) throw UsageError("--padding must be >= 0");
-  if (!(scale > 1.0)) throw UsageError("--scale must be > 1");
-  if (group_threshold < 0) throw UsageError("--group-threshold must be >= 0");
-  if (!(resize > 0.05 && resize <= 8)) throw UsageError("--resize must be in (0.05, 8]");
-  if (levels < 1) throw UsageError("--levels must be >= 1");
-  if (!(nms_iou > 0 && nms_iou <= 1)) throw UsageError("--nms-iou must be in (0, 1]");
-  if (roi.width < 0 || roi.height < 0) throw UsageError("--roi must have a positive size");
-  if (adapt_after < 0) throw UsageError("--adapt-after must be >= 0");
-  if (!(adapt_margin >= 0 && adapt_margin < 1)) throw UsageError("--adapt-margin must be in [0, 1)");
-  if (!(local_region_margin >= 0 && local_region_margin <= 2)) throw UsageError("--local-region-margin must be in [0, 2]");
-  if (!(local_height_margin >= 0 && local_height_margin < 0.5)) throw UsageError("--local-height-margin must be in [0, 0.5)");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("HogOptions", field, problem); };
+  if (win_stride < 1) fail("win_stride", "must be >= 1");
+  if (padding < 0) fail("padding", "must be >= 0");
+  if (!(scale > 1.0)) fail("scale", "must be > 1");
+  if (group_threshold < 0) fail("group_threshold", "must be >= 0");
+  if (!(resize > 0.05 && resize <= 8)) fail("resize", "must be in (0.05, 8]");
+  if (levels < 1) fail("levels", "must be >= 1");
+  if (!(nms_iou > 0 && nms_iou <= 1)) fail("nms_iou", "must be in (0, 1]");
+  if (roi.width < 0 || roi.height < 0) fail("roi", "must have a positive size");
+  if (adapt_after < 0) fail("adapt_after", "must be >= 0");
+  if (!(adapt_margin >= 0 && adapt_margin < 1)) fail("adapt_margin", "must be in [0, 1)");
+  if (!(local_region_margin >= 0 && local_region_margin <= 2)) fail("local_region_margin", "must be in [0, 2]");
+  if (!(local_height_margin >= 0 && local_height_margin < 0.5)) fail("local_height_margin", "must be in [0, 0.5)");
   motion.check();
 }
 

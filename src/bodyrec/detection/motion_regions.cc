@@ -9,11 +9,13 @@
 namespace bodyrec {
 
 void MotionRegionOptions::check() const {
-  if (!(work_width >= 32)) throw UsageError("motion work width must be >= 32 pixels");
-  if (history < 1) throw UsageError("motion history must be >= 1 frame");
-  if (!(var_threshold > 0)) throw UsageError("motion variance threshold must be > 0");
-  if (min_area < 0 || margin < 0) throw UsageError("motion min area and margin must be >= 0");
-  if (warmup_frames < 0) throw UsageError("motion warm-up must be >= 0 frames");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("MotionRegionOptions", field, problem); };
+  if (!(work_width >= 32)) fail("work_width", "must be >= 32 pixels");
+  if (history < 1) fail("history", "must be >= 1 frame");
+  if (!(var_threshold > 0)) fail("var_threshold", "must be > 0");
+  if (min_area < 0) fail("min_area", "must be >= 0");
+  if (margin < 0) fail("margin", "must be >= 0");
+  if (warmup_frames < 0) fail("warmup_frames", "must be >= 0 frames");
 }
 
 MotionRegions::MotionRegions(const MotionRegionOptions& options)

@@ -7,7 +7,7 @@
 namespace bodyrec {
 
 void GroupPipelineOptions::check() const {
-  if (!(fps >= 0)) throw UsageError("GroupPipelineOptions.fps must be >= 0");
+  if (!(fps >= 0)) throw OptionError("GroupPipelineOptions", "fps", "must be >= 0");
   tracking.check();
   stages.check();
 }

@@ -38,7 +38,7 @@ std::optional<RoleMode> parse_role_mode(const std::string& text) {
 }
 
 void GroupStagesOptions::check() const {
-  if (!(pixels_per_metre >= 0)) throw UsageError("GroupStagesOptions.pixels_per_metre must be >= 0");
+  if (!(pixels_per_metre >= 0)) throw OptionError("GroupStagesOptions", "pixels_per_metre", "must be >= 0");
   motion.check();
   thesis.check();
   trajectory.check();

@@ -10,10 +10,11 @@
 namespace bodyrec {
 
 void LeaderDirectionOptions::check() const {
-  if (window < 1) throw UsageError("--direction-window must be >= 1 frame");
-  if (!(work_height >= 16)) throw UsageError("direction work height must be >= 16 px");
-  if (!(torso_y > 0 && torso_y < 1)) throw UsageError("torso position must be in (0, 1)");
-  if (!(torso_size > 0 && torso_size <= 1)) throw UsageError("torso patch size must be in (0, 1]");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("LeaderDirectionOptions", field, problem); };
+  if (window < 1) fail("window", "must be >= 1 frame");
+  if (!(work_height >= 16)) fail("work_height", "must be >= 16 px");
+  if (!(torso_y > 0 && torso_y < 1)) fail("torso_y", "must be in (0, 1)");
+  if (!(torso_size > 0 && torso_size <= 1)) fail("torso_size", "must be in (0, 1]");
 }
 
 double flow_degrees(const cv::Point2d& flow) {

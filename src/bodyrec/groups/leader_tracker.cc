@@ -10,13 +10,14 @@
 namespace bodyrec {
 
 void LeaderTrackerOptions::check() const {
-  if (!(min_psr >= 0)) throw UsageError("--leader-min-psr must be >= 0");
-  if (max_disagreement < 1) throw UsageError("--leader-max-disagreement must be >= 1");
-  if (max_unsupported < 1) throw UsageError("--leader-max-unsupported must be >= 1");
-  if (!(disagree_iou >= 0 && disagree_iou <= 1)) throw UsageError("leader disagreement IoU must be in 0..1");
-  if (!(reacquire_iou > 0 && reacquire_iou <= 1)) throw UsageError("--leader-reacquire-iou must be in (0, 1]");
-  if (reacquire_frames < 0) throw UsageError("--leader-reacquire-frames must be >= 0");
-  if (!(max_outside > 0 && max_outside <= 1)) throw UsageError("leader max outside fraction must be in (0, 1]");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("LeaderTrackerOptions", field, problem); };
+  if (!(min_psr >= 0)) fail("min_psr", "must be >= 0");
+  if (max_disagreement < 1) fail("max_disagreement", "must be >= 1");
+  if (max_unsupported < 1) fail("max_unsupported", "must be >= 1");
+  if (!(disagree_iou >= 0 && disagree_iou <= 1)) fail("disagree_iou", "must be in 0..1");
+  if (!(reacquire_iou > 0 && reacquire_iou <= 1)) fail("reacquire_iou", "must be in (0, 1]");
+  if (reacquire_frames < 0) fail("reacquire_frames", "must be >= 0");
+  if (!(max_outside > 0 && max_outside <= 1)) fail("max_outside", "must be in (0, 1]");
 }
 
 std::string to_string(LeaderState state) {

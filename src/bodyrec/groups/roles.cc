@@ -8,12 +8,13 @@
 namespace bodyrec {
 
 void ThesisRoleOptions::check() const {
-  if (!(true_member_distance >= 0)) throw UsageError("--true-member-distance must be >= 0");
-  if (!(close_distance >= 0)) throw UsageError("--close-distance must be >= 0");
-  if (!(moving_energy >= 0 && moving_energy <= 1)) throw UsageError("--moving-energy must be in 0..1");
-  if (prune_period < 1) throw UsageError("--prune-period must be >= 1 frame");
-  if (!(still_tolerance >= 0)) throw UsageError("--still-tolerance must be >= 0");
-  if (vote_period < 1) throw UsageError("--vote-period must be >= 1 frame");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("ThesisRoleOptions", field, problem); };
+  if (!(true_member_distance >= 0)) fail("true_member_distance", "must be >= 0");
+  if (!(close_distance >= 0)) fail("close_distance", "must be >= 0");
+  if (!(moving_energy >= 0 && moving_energy <= 1)) fail("moving_energy", "must be in 0..1");
+  if (prune_period < 1) fail("prune_period", "must be >= 1 frame");
+  if (!(still_tolerance >= 0)) fail("still_tolerance", "must be >= 0");
+  if (vote_period < 1) fail("vote_period", "must be >= 1 frame");
 }
 
 ThesisRoles::ThesisRoles(const ThesisRoleOptions& options, bool voting) : options_(options), voting_(voting) {

@@ -8,12 +8,14 @@
 namespace bodyrec {
 
 void TrajectoryRoleOptions::check() const {
-  if (!(moving_speed >= 0)) throw UsageError("--moving-speed must be >= 0");
-  if (!(ahead_margin >= 0)) throw UsageError("--ahead-margin must be >= 0");
-  if (leader_hold < 1) throw UsageError("--leader-hold must be >= 1 frame");
-  if (!(velocity_span_s > 0) || !(energy_span_s > 0)) throw UsageError("role history spans must be > 0 s");
-  if (confirm_frames < 1) throw UsageError("--confirm-frames must be >= 1");
-  if (!(leader_absence_s >= 0)) throw UsageError("--leader-absence must be >= 0 s");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("TrajectoryRoleOptions", field, problem); };
+  if (!(moving_speed >= 0)) fail("moving_speed", "must be >= 0");
+  if (!(ahead_margin >= 0)) fail("ahead_margin", "must be >= 0");
+  if (leader_hold < 1) fail("leader_hold", "must be >= 1 frame");
+  if (!(velocity_span_s > 0)) fail("velocity_span_s", "must be > 0 s");
+  if (!(energy_span_s > 0)) fail("energy_span_s", "must be > 0 s");
+  if (confirm_frames < 1) fail("confirm_frames", "must be >= 1");
+  if (!(leader_absence_s >= 0)) fail("leader_absence_s", "must be >= 0 s");
 }
 
 TrajectoryRoles::TrajectoryRoles(const TrajectoryRoleOptions& options) : options_(options) { options_.check(); }

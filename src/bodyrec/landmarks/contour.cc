@@ -21,10 +21,10 @@ std::string to_string(ContourStatus status) {
 }
 
 void ContourOptions::check() const {
-  if (landmarks < 3 || landmarks > 10000) throw UsageError("--landmarks must be in [3, 10000]");
-  if (min_height < 1) throw UsageError("minimum person height must be >= 1 px");
+  if (landmarks < 3 || landmarks > 10000) throw OptionError("ContourOptions", "landmarks", "must be in [3, 10000]");
+  if (min_height < 1) throw OptionError("ContourOptions", "min_height", "must be >= 1 px");
   if (!(max_border_fraction >= 0 && max_border_fraction <= 1))
-    throw UsageError("maximum border fraction must be in [0, 1]");
+    throw OptionError("ContourOptions", "max_border_fraction", "must be in [0, 1]");
 }
 
 double signed_area2(const std::vector<cv::Point2d>& polygon) {

@@ -26,9 +26,9 @@ void write_image(const cv::Mat& image, const fs::path& path) {
 }  // namespace
 
 void ContourSetOptions::check() const {
-  if (pennfudan_dir.empty()) throw UsageError("make-contour-set needs --pennfudan DIR");
-  if (out_dir.empty()) throw UsageError("make-contour-set needs --out DIR");
-  if (!(box_margin >= 0 && box_margin <= 1)) throw UsageError("--box-margin must be in [0, 1]");
+  if (pennfudan_dir.empty()) throw OptionError("ContourSetOptions", "pennfudan_dir", "is required");
+  if (out_dir.empty()) throw OptionError("ContourSetOptions", "out_dir", "is required");
+  if (!(box_margin >= 0 && box_margin <= 1)) throw OptionError("ContourSetOptions", "box_margin", "must be in [0, 1]");
   contour.check();
 }
 

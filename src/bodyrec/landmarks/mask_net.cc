@@ -167,16 +167,18 @@ struct BodyMaskNet::Impl {
 };
 
 void MaskNetTrainOptions::check() const {
-  if (input_width < 8 || input_width % 8 != 0 || input_height < 8 || input_height % 8 != 0)
-    throw UsageError("--net-size must be WxH with both multiples of 8 (e.g. 32x96)");
-  if (iterations < 1) throw UsageError("--iterations must be >= 1");
-  if (batch < 1) throw UsageError("--batch must be >= 1");
-  if (!(learning_rate > 0 && learning_rate < 1)) throw UsageError("--learning-rate must be in (0, 1)");
-  if (!(weight_decay >= 0 && weight_decay < 1)) throw UsageError("--weight-decay must be in [0, 1)");
-  if (!std::isfinite(threshold)) throw UsageError("--mask-threshold must be a finite logit");
-  if (!(box_jitter >= 0 && box_jitter <= 0.5)) throw UsageError("--box-jitter must be in [0, 0.5]");
-  if (networks < 1 || networks > kMaxNetworks)
-    throw UsageError("--networks must be in [1, " + std::to_string(kMaxNetworks) + "]");
+  const auto fail = [](const char* field, const std::string& problem) {
+    throw OptionError("MaskNetTrainOptions", field, problem);
+  };
+  if (input_width < 8 || input_width % 8 != 0) fail("input_width", "must be a multiple of 8 (e.g. 32)");
+  if (input_height < 8 || input_height % 8 != 0) fail("input_height", "must be a multiple of 8 (e.g. 96)");
+  if (iterations < 1) fail("iterations", "must be >= 1");
+  if (batch < 1) fail("batch", "must be >= 1");
+  if (!(learning_rate > 0 && learning_rate < 1)) fail("learning_rate", "must be in (0, 1)");
+  if (!(weight_decay >= 0 && weight_decay < 1)) fail("weight_decay", "must be in [0, 1)");
+  if (!std::isfinite(threshold)) fail("threshold", "must be a finite logit");
+  if (!(box_jitter >= 0 && box_jitter <= 0.5)) fail("box_jitter", "must be in [0, 0.5]");
+  if (networks < 1 || networks > kMaxNetworks) fail("networks", "must be in [1, " + std::to_string(kMaxNetworks) + "]");
 }
 
 cv::Mat crop_box(const cv::Mat& image, const Box& box, cv::Size size) {

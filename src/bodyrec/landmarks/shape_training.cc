@@ -37,17 +37,18 @@ std::optional<ShapeMethod> parse_shape_method(const std::string& text) {
 }
 
 void ShapeTrainOptions::check() const {
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("ShapeTrainOptions", field, problem); };
   if (method == ShapeMethod::kMaskNet) net.check();
-  if (oversampling < 1) throw UsageError("--oversampling must be >= 1");
-  if (!(nu > 0 && nu <= 1)) throw UsageError("--nu must be in (0, 1]");
-  if (tree_depth < 1 || tree_depth > 10) throw UsageError("--tree-depth must be in [1, 10]");
-  if (cascade_depth < 1) throw UsageError("--cascade-depth must be >= 1");
-  if (trees_per_level < 1) throw UsageError("--trees-per-level must be >= 1");
-  if (feature_pool_size < 2) throw UsageError("--feature-pool-size must be >= 2");
-  if (test_splits < 1) throw UsageError("--test-splits must be >= 1");
-  if (!(lambda > 0)) throw UsageError("--lambda must be > 0");
-  if (!(padding >= 0)) throw UsageError("--padding must be >= 0");
-  if (threads < 1) throw UsageError("--threads must be >= 1");
+  if (oversampling < 1) fail("oversampling", "must be >= 1");
+  if (!(nu > 0 && nu <= 1)) fail("nu", "must be in (0, 1]");
+  if (tree_depth < 1 || tree_depth > 10) fail("tree_depth", "must be in [1, 10]");
+  if (cascade_depth < 1) fail("cascade_depth", "must be >= 1");
+  if (trees_per_level < 1) fail("trees_per_level", "must be >= 1");
+  if (feature_pool_size < 2) fail("feature_pool_size", "must be >= 2");
+  if (test_splits < 1) fail("test_splits", "must be >= 1");
+  if (!(lambda > 0)) fail("lambda", "must be > 0");
+  if (!(padding >= 0)) fail("padding", "must be >= 0");
+  if (threads < 1) fail("threads", "must be >= 1");
 }
 
 BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOptions& options) {

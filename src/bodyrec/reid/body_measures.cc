@@ -9,12 +9,14 @@
 namespace bodyrec {
 
 void StatureOptions::check() const {
-  if (top_rank < 1) throw UsageError("stature: top_rank must be at least 1");
-  if (!(near_body_m > 0)) throw UsageError("stature: near_body_m must be positive");
-  if (!(occluder_m > 0)) throw UsageError("stature: occluder_m must be positive");
-  if (above_px < 1) throw UsageError("stature: above_px must be at least 1");
-  if (!(head_band_m >= 0)) throw UsageError("stature: head_band_m must not be negative");
-  if (!(min_m > 0 && max_m > min_m)) throw UsageError("stature: need 0 < min_m < max_m");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("StatureOptions", field, problem); };
+  if (top_rank < 1) fail("top_rank", "must be at least 1");
+  if (!(near_body_m > 0)) fail("near_body_m", "must be positive");
+  if (!(occluder_m > 0)) fail("occluder_m", "must be positive");
+  if (above_px < 1) fail("above_px", "must be at least 1");
+  if (!(head_band_m >= 0)) fail("head_band_m", "must not be negative");
+  if (!(min_m > 0)) fail("min_m", "must be positive");
+  if (!(max_m > min_m)) fail("max_m", "must be above min_m");
 }
 
 std::optional<double> measure_stature(const cv::Mat& depth, double unit, const Intrinsics& k, const cv::Mat& labels,

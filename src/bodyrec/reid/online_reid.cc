@@ -39,25 +39,26 @@ const char* reid_event_name(ReidEventKind kind) {
 }
 
 void OnlineReidOptions::check() const {
-  if (decide_after < 1) throw UsageError("reid: --decide-after must be at least 1");
-  if (max_wait_frames < 1) throw UsageError("reid: --max-wait must be at least 1 frame");
-  if (stature_wait_frames < 0) throw UsageError("reid: --stature-wait must not be negative");
-  if (max_scans < decide_after) throw UsageError("reid: max_scans must be at least --decide-after");
-  if (sure_after < 1) throw UsageError("reid: --sure-after must be at least 1");
-  if (!(min_quality >= 0 && min_quality <= 1)) throw UsageError("reid: --min-quality must be within 0..1");
-  if (!(min_view_confidence >= 0 && min_view_confidence <= 1))
-    throw UsageError("reid: --min-view-confidence must be within 0..1");
-  if (!(update_gain >= 1)) throw UsageError("reid: update gain must be at least 1");
-  if (update_every < 1) throw UsageError("reid: update_every must be at least 1");
-  if (verify_every < 1 || strikes < 1) throw UsageError("reid: verify_every and strikes must be at least 1");
-  if (!(verify_quality >= 0 && verify_quality <= 1)) throw UsageError("reid: verify_quality must be within 0..1");
-  if (!(left_after_s >= 0)) throw UsageError("reid: --left-after must not be negative");
-  if (std::isinf(threshold)) throw UsageError("reid: --threshold must be finite");
-  if (!(margin >= 0)) throw UsageError("reid: --margin must not be negative");
-  if (!(new_gap >= 0)) throw UsageError("reid: --new-gap must not be negative");
-  if (!(stature_tolerance_m >= 0)) throw UsageError("reid: stature tolerance must not be negative");
-  if (!(stature_weight >= 0)) throw UsageError("reid: --stature-weight must not be negative");
-  if (!(stature_cap >= 0)) throw UsageError("reid: stature cap must not be negative");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("OnlineReidOptions", field, problem); };
+  if (decide_after < 1) fail("decide_after", "must be at least 1");
+  if (max_wait_frames < 1) fail("max_wait_frames", "must be at least 1 frame");
+  if (stature_wait_frames < 0) fail("stature_wait_frames", "must not be negative");
+  if (max_scans < decide_after) fail("max_scans", "must be at least decide_after");
+  if (sure_after < 1) fail("sure_after", "must be at least 1");
+  if (!(min_quality >= 0 && min_quality <= 1)) fail("min_quality", "must be within 0..1");
+  if (!(min_view_confidence >= 0 && min_view_confidence <= 1)) fail("min_view_confidence", "must be within 0..1");
+  if (!(update_gain >= 1)) fail("update_gain", "must be at least 1");
+  if (update_every < 1) fail("update_every", "must be at least 1");
+  if (verify_every < 1) fail("verify_every", "must be at least 1");
+  if (strikes < 1) fail("strikes", "must be at least 1");
+  if (!(verify_quality >= 0 && verify_quality <= 1)) fail("verify_quality", "must be within 0..1");
+  if (!(left_after_s >= 0)) fail("left_after_s", "must not be negative");
+  if (std::isinf(threshold)) fail("threshold", "must be finite");
+  if (!(margin >= 0)) fail("margin", "must not be negative");
+  if (!(new_gap >= 0)) fail("new_gap", "must not be negative");
+  if (!(stature_tolerance_m >= 0)) fail("stature_tolerance_m", "must not be negative");
+  if (!(stature_weight >= 0)) fail("stature_weight", "must not be negative");
+  if (!(stature_cap >= 0)) fail("stature_cap", "must not be negative");
 }
 
 OnlineReid::OnlineReid(ReidStore& store, const AppearanceMatcher& matcher, OnlineReidOptions options)

@@ -18,8 +18,8 @@ OrientationOptions estimator_options(const OrientPipelineOptions& options) {
 
 void OrientPipelineOptions::check() const {
   if (bodies.depth_only && orientation.method == ViewMethod::kThesis)
-    throw UsageError("orientation: bodies.depth_only needs the robust view method (the thesis rule reads joint "
-                     "quaternions)");
+    throw OptionError("OrientPipelineOptions", "orientation.method",
+                      "must be the robust view method with bodies.depth_only (the thesis rule reads joint quaternions)");
 }
 
 OrientPipeline::OrientPipeline(const RecordingMeta& meta, const OrientPipelineOptions& options,

@@ -62,11 +62,16 @@ std::optional<ViewMethod> parse_view_method(const std::string& name) {
 }
 
 void OrientationOptions::check() const {
-  if (face_every < 1) throw UsageError("orientation options: face_every must be >= 1");
-  if (!(turn_gain >= 0 && turn_gain <= 1)) throw UsageError("orientation options: turn_gain must be in 0..1");
-  for (double w : {sides_weight, face_weight, no_face_weight, motion_weight, continuity_weight, min_speed_mps, walk_axis_speed_mps, forget_s})
-    if (!(w >= 0)) throw UsageError("orientation options: weights, speeds and times must be >= 0");
-  if (!(smoothing > 0 && smoothing <= 1)) throw UsageError("orientation options: smoothing must be in (0, 1]");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("OrientationOptions", field, problem); };
+  if (face_every < 1) fail("face_every", "must be >= 1");
+  if (!(turn_gain >= 0 && turn_gain <= 1)) fail("turn_gain", "must be in 0..1");
+  const std::pair<const char*, double> non_negative[] = {
+      {"sides_weight", sides_weight}, {"face_weight", face_weight}, {"no_face_weight", no_face_weight},
+      {"motion_weight", motion_weight}, {"continuity_weight", continuity_weight}, {"min_speed_mps", min_speed_mps},
+      {"walk_axis_speed_mps", walk_axis_speed_mps}, {"forget_s", forget_s}};
+  for (const auto& [field, value] : non_negative)
+    if (!(value >= 0)) fail(field, "must be >= 0");
+  if (!(smoothing > 0 && smoothing <= 1)) fail("smoothing", "must be in (0, 1]");
 }
 
 std::optional<DepthAxis> depth_axis(const cv::Mat& depth, double unit, const Intrinsics& k, const cv::Mat& labels,

@@ -21,14 +21,15 @@ std::optional<double> scaled(double sum, int common, const StripeOptions& o) {
 }  // namespace
 
 void StripeOptions::check() const {
-  if (bands < 1 || bands > 64) throw UsageError("stripe features: bands must be 1..64");
-  if (!(band_m > 0)) throw UsageError("stripe features: band_m must be positive");
-  if (!(assumed_stature_m > 0)) throw UsageError("stripe features: assumed_stature_m must be positive");
-  if (!(min_band_share >= 0 && min_band_share < 1)) throw UsageError("stripe features: min_band_share must be in [0, 1)");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("StripeOptions", field, problem); };
+  if (bands < 1 || bands > 64) fail("bands", "must be 1..64");
+  if (!(band_m > 0)) fail("band_m", "must be positive");
+  if (!(assumed_stature_m > 0)) fail("assumed_stature_m", "must be positive");
+  if (!(min_band_share >= 0 && min_band_share < 1)) fail("min_band_share", "must be in [0, 1)");
   if (hue_bins < 1 || sat_bins < 1 || val_bins < 1 || hue_bins * sat_bins * val_bins > 4096)
-    throw UsageError("stripe features: bins must be positive and at most 4096 per band");
-  if (min_common < 1 || min_common > bands) throw UsageError("stripe features: min_common must be 1..bands");
-  if (!(compared_bands > 0)) throw UsageError("stripe features: compared_bands must be positive");
+    fail("hue_bins", "and sat_bins, val_bins must be positive, at most 4096 bins per band in all");
+  if (min_common < 1 || min_common > bands) fail("min_common", "must be 1..bands");
+  if (!(compared_bands > 0)) fail("compared_bands", "must be positive");
 }
 
 int stripe_length(const StripeOptions& o) { return o.bands * o.hue_bins * o.sat_bins * o.val_bins; }

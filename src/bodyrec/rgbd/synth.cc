@@ -195,14 +195,15 @@ std::vector<Script> make_scripts(const SynthOptions& o) {
 }  // namespace
 
 void SynthOptions::check() const {
+  const auto fail = [](const char* field, const std::string& problem) { throw OptionError("SynthOptions", field, problem); };
   if (people < 1 || people > kMaxSynthPeople)
-    throw UsageError("synth: --people must be 1..8 (at most 6 are tracked at once, like a Kinect)");
-  if (frames < 1) throw UsageError("synth: --frames must be positive");
+    fail("people", "must be 1..8 (at most 6 are tracked at once, like a Kinect)");
+  if (frames < 1) fail("frames", "must be positive");
   const auto& s = synth_scenarios();
   if (std::find(s.begin(), s.end(), scenario) == s.end())
-    throw UsageError("synth: unknown --scenario \"" + scenario + "\" (walk-turn, cross, group, reenter, visits)");
-  if (color_width < 64 || color_height < 48 || color_width > 4096 || color_height > 4096)
-    throw UsageError("synth: colour size must be 64x48 .. 4096x4096");
+    fail("scenario", "\"" + scenario + "\" is unknown (walk-turn, cross, group, reenter, visits)");
+  if (color_width < 64 || color_width > 4096) fail("color_width", "must be 64..4096");
+  if (color_height < 48 || color_height > 4096) fail("color_height", "must be 48..4096");
 }
 
 const std::vector<std::string>& synth_scenarios() {

@@ -13,7 +13,7 @@ std::optional<BetweenDetections> parse_between_detections(const std::string& tex
 }
 
 void DetectAndTrackOptions::check() const {
-  if (detect_every < 1) throw UsageError("DetectAndTrackOptions.detect_every must be >= 1");
+  if (detect_every < 1) throw OptionError("DetectAndTrackOptions", "detect_every", "must be >= 1");
   tracker.check();
 }
 

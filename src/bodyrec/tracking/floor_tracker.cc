@@ -21,10 +21,11 @@ TrackerOptions box_options(const FloorTrackerOptions& o) {
 }  // namespace
 
 void FloorTrackerOptions::check() const {
-  if (!(footprint_m > 0)) throw UsageError("floor tracker: footprint_m must be positive");
-  if (max_age < 0) throw UsageError("floor tracker: max_age must not be negative");
-  if (min_hits < 1) throw UsageError("floor tracker: min_hits must be at least 1");
-  if (walk_out_frames < 0) throw UsageError("floor tracker: walk_out_frames must not be negative");
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("FloorTrackerOptions", field, problem); };
+  if (!(footprint_m > 0)) fail("footprint_m", "must be positive");
+  if (max_age < 0) fail("max_age", "must not be negative");
+  if (min_hits < 1) fail("min_hits", "must be at least 1");
+  if (walk_out_frames < 0) fail("walk_out_frames", "must not be negative");
 }
 
 FloorTracker::FloorTracker(FloorTrackerOptions options) : options_(options), tracker_(box_options(options)) {}

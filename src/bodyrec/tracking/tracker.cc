@@ -19,17 +19,14 @@ struct MultiTracker::Track {
 };
 
 void TrackerOptions::check() const {
-  auto fail = [](const std::string& field, const std::string& rule) {
-    throw UsageError("tracker option " + field + " " + rule);
-  };
+  const auto fail = [](const char* field, const char* problem) { throw OptionError("TrackerOptions", field, problem); };
   if (min_hits < 1) fail("min_hits", "must be >= 1");
   if (max_age < 0) fail("max_age", "must be >= 0");
   if (coast_frames < 0) fail("coast_frames", "must be >= 0");
   if (!(iou_gate > 0 && iou_gate <= 1)) fail("iou_gate", "must be in (0, 1]");
   if (!(distance_gate >= 0)) fail("distance_gate", "must be >= 0");
   if (!(size_gate >= 0 && size_gate <= 1)) fail("size_gate", "must be in [0, 1]");
-  if (!(noise.position > 0 && noise.velocity > 0 && noise.measurement > 0))
-    fail("noise", "weights must be > 0");
+  if (!(noise.position > 0 && noise.velocity > 0 && noise.measurement > 0)) fail("noise", "weights must be > 0");
 }
 
 std::string to_string(TrackState state) {

@@ -192,3 +192,25 @@ TEST(MultiTracker, RejectsFramesGoingBackwardsAndBadOptions) {
 
 }  // namespace
 }  // namespace bodyrec
+
+namespace bodyrec {
+namespace {
+
+// Library checks name the options struct and field, so that any front end can map them to its own names.
+TEST(TrackerOptions, ABadValueNamesTheStructAndTheField) {
+  TrackerOptions options;
+  options.min_hits = 0;
+  try {
+    options.check();
+    FAIL() << "no error";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.options(), "TrackerOptions");
+    EXPECT_EQ(e.field(), "min_hits");
+    EXPECT_EQ(e.problem(), "must be >= 1");
+    EXPECT_STREQ(e.what(), "TrackerOptions.min_hits must be >= 1");
+    EXPECT_EQ(e.code(), ExitCode::kUsage);
+  }
+}
+
+}  // namespace
+}  // namespace bodyrec
