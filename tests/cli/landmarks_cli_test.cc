@@ -325,7 +325,7 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   EXPECT_TRUE(contains(r.err, "--min-hits requires --track")) << r.err;
   r = run_bodyrec({"landmark", path("set/images/P00.png").string(), "--shape", shape, "--track", "--min-hits", "0"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_TRUE(contains(r.err, "min_hits must be >= 1")) << r.err;
+  EXPECT_TRUE(contains(r.err, "--min-hits must be >= 1")) << r.err;
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--holdout-xml",
                    path("v.xml").string()});
   EXPECT_EQ(r.exit_code, 2);
