@@ -10,6 +10,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/groups/group_selection.h"
 #include "command.h"
+#include "enum_option.h"
 #include "group_options.h"
 
 namespace bodyrec::cli {
@@ -25,7 +26,7 @@ nlohmann::json scores_json(const PairScores& s) {
 
 struct EvalGroupsCommand {
   std::vector<std::string> scene_dirs;
-  std::string method = "learned";
+  EvalMethod method = EvalMethod::kLearned;
   std::string model = "auto";
   GroupCliOptions options;
   double max_distance = 2.0;
@@ -33,12 +34,6 @@ struct EvalGroupsCommand {
   bool baseline = false;
   bool nested = false;
   bool json = false;
-
-  EvalMethod parsed_method() const {
-    if (method == "learned") return EvalMethod::kLearned;
-    if (method == "threshold") return EvalMethod::kThreshold;
-    throw UsageError("--method must be learned or threshold, got '" + method + "'");
-  }
 
   // The rule of --method threshold (and of --baseline: the plain rule, linkage none).
   GroupCandidate rule(bool plain) const {
@@ -54,7 +49,7 @@ struct EvalGroupsCommand {
   }
 
   void run() const {
-    const EvalMethod m = parsed_method();
+    const EvalMethod m = method;
     std::vector<WalkingScene> scenes;
     for (const auto& dir : scene_dirs) scenes.push_back(read_walking_scene(dir, options.seconds_per_frame));
     if (nested) return run_nested(std::move(scenes));
@@ -177,10 +172,13 @@ void add(CLI::App& eval) {
       "on the other scenes only.");
   sub->add_option("--scene", command->scene_dirs, "Scene folder with obsmat.txt and groups.txt (repeat for several)")
       ->required();
-  sub->add_option("--method", command->method,
+  add_enum_option(*sub, "--method", command->method,
+                  std::vector<std::pair<std::string, EvalMethod>>{{"learned", EvalMethod::kLearned},
+                                                                  {"threshold", EvalMethod::kThreshold}},
                   "learned (the model of --model: by default the built-in learned rule) or threshold (the rule "
                   "with --max-distance and --max-speed-difference over the pair's whole common time; "
-                  "--linkage applies if given, else none)");
+                  "--linkage applies if given, else none)",
+                  "learned");
   sub->add_option("--model", command->model,
                   "auto (built-in, never trained on this scene) or a model file from `bodyrec train-groups`; "
                   "its window, min-moving share and linkage apply unless given");

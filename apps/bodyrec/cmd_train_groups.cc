@@ -11,30 +11,26 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/groups/group_selection.h"
 #include "command.h"
+#include "enum_option.h"
 #include "group_options.h"
 
 namespace bodyrec::cli {
 namespace {
 
 enum class TrainMethod { kRule, kPairModel };
+enum class TrainFeatures { kAll, kDistanceSpeed };
 
 struct TrainGroupsCommand {
   std::vector<std::string> scenes;
   std::string out;
-  std::string method = "rule";
-  std::string features = "all";
+  TrainMethod method = TrainMethod::kRule;
+  TrainFeatures features = TrainFeatures::kAll;
   std::vector<double> l2 = {0.01, 0.1, 1, 3, 10};
   GroupCliOptions options;
 
   GroupFamily family() const {
-    TrainMethod m;
-    if (method == "rule") m = TrainMethod::kRule;
-    else if (method == "pair-model") m = TrainMethod::kPairModel;
-    else throw UsageError("--method must be rule or pair-model, got '" + method + "'");
-    PairFeatureSet set;
-    if (features == "all") set = all_pair_features();
-    else if (features == "distance-speed") set = distance_speed_features();
-    else throw UsageError("--features must be all or distance-speed, got '" + features + "'");
+    const TrainMethod m = method;
+    const PairFeatureSet set = features == TrainFeatures::kAll ? all_pair_features() : distance_speed_features();
 
     const double whole = std::numeric_limits<double>::infinity();
     std::vector<double> windows = m == TrainMethod::kRule ? std::vector<double>{whole} : std::vector<double>{8, 5, 12};
@@ -88,10 +84,16 @@ void add(CLI::App& app) {
       "fitted on all of them.");
   sub->add_option("--scene", command->scenes, "Scene folder with obsmat.txt and groups.txt (repeat)")->required();
   sub->add_option("--out", command->out, "Model file to write (default: stdout)");
-  sub->add_option("--method", command->method,
+  add_enum_option(*sub, "--method", command->method,
+                  std::vector<std::pair<std::string, TrainMethod>>{{"rule", TrainMethod::kRule},
+                                                                   {"pair-model", TrainMethod::kPairModel}},
                   "rule (median distance and speed difference thresholds over the pair's common time, "
-                  "learned; the default) or pair-model (logistic regression over --window seconds)");
-  sub->add_option("--features", command->features, "pair-model: all or distance-speed");
+                  "learned) or pair-model (logistic regression over --window seconds)",
+                  "rule");
+  add_enum_option(*sub, "--features", command->features,
+                  std::vector<std::pair<std::string, TrainFeatures>>{{"all", TrainFeatures::kAll},
+                                                                     {"distance-speed", TrainFeatures::kDistanceSpeed}},
+                  "pair-model: all features or only median distance and speed difference", "all");
   sub->add_option("--l2", command->l2, "pair-model: L2 penalties to choose from (on the standardised weights)")
       ->check(CLI::NonNegativeNumber);
   add_group_options(*sub, command->options);

@@ -2,23 +2,16 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/parse_number.h"
+#include "enum_option.h"
 
 namespace bodyrec::cli {
 
-GroupLinkage GroupCliOptions::linkage_value() const {
-  if (linkage == "average") return GroupLinkage::kAverage;
-  if (linkage == "single") return GroupLinkage::kSingle;
-  if (linkage == "none") return GroupLinkage::kNone;
-  throw UsageError("--linkage must be average, single or none, got '" + linkage + "'");
-}
-
 GroupOptions GroupCliOptions::resolved(std::shared_ptr<const PairModel> model) const {
-  const GroupLinkage given_linkage = linkage_value();  // checked even when the model's applies
   GroupOptions o = options_for(model, groups);
   if (window_given()) o.window_s = groups.window_s;
   if (velocity_span_given()) o.velocity_span_s = groups.velocity_span_s;
   if (min_moving_given()) o.min_moving_fraction = groups.min_moving_fraction;
-  if (linkage_given()) o.linkage = given_linkage;
+  if (linkage_given()) o.linkage = linkage;
   o.check();
   return o;
 }
@@ -50,10 +43,13 @@ void add_group_options(CLI::App& sub, GroupCliOptions& options) {
                      "Windows where the two walk for less than this share of the time add no evidence (0: all "
                      "count; default: the model's; train-groups chooses it)")
           ->check(CLI::Range(0.0, 1.0));
-  options.linkage_option = sub.add_option(
-      "--linkage", options.linkage,
+  options.linkage_option = add_enum_option(
+      sub, "--linkage", options.linkage,
+      std::vector<std::pair<std::string, GroupLinkage>>{
+          {"single", GroupLinkage::kSingle}, {"average", GroupLinkage::kAverage}, {"none", GroupLinkage::kNone}},
       "How pairs form groups: single (connected components of together pairs), average (clusters whose pairs "
-      "agree on average), none (each pair alone); default: the model's; train-groups chooses it");
+      "agree on average), none (each pair alone); train-groups chooses it",
+      "the model's");
   sub.add_option("--seconds-per-frame", options.seconds_per_frame,
                  "obsmat frame period; default: estimated from its velocities")
       ->check(CLI::NonNegativeNumber);

@@ -13,7 +13,7 @@ namespace bodyrec::cli {
 
 struct GroupCliOptions {
   GroupOptions groups;
-  std::string linkage = "single";
+  GroupLinkage linkage = GroupLinkage::kSingle;  // used only when given (linkage_given)
   double seconds_per_frame = 0;  // 0 = estimate from obsmat velocities
   // Set by add_group_options (null when the options were not added).
   CLI::Option* window_option = nullptr;
@@ -31,8 +31,7 @@ struct GroupCliOptions {
   bool min_moving_given() const { return min_moving_option && min_moving_option->count() > 0; }
   bool linkage_given() const { return linkage_option && linkage_option->count() > 0; }
   bool velocity_span_given() const { return velocity_span_option && velocity_span_option->count() > 0; }
-  // --linkage as an enum (UsageError for an unknown name).
-  GroupLinkage linkage_value() const;
+  GroupLinkage linkage_value() const { return linkage; }
   // --velocity-span, or 0.4 s (the plain rule's).
   double velocity_span() const { return velocity_span_given() ? groups.velocity_span_s : 0.4; }
 };
