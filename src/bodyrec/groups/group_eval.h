@@ -42,25 +42,11 @@ std::map<std::pair<int, int>, double> replay_evidence(const WalkingScene& scene,
 PairScores evaluate_learned(const WalkingScene& scene, const std::map<std::pair<int, int>, double>& evidence,
                             GroupLinkage linkage, double shift = 0);
 
-// The plain rule of issue 11: together when, over all common frames, the median distance <= max_distance_m
-// and the median speed difference <= max_speed_difference (m/s).
+// The plain rule: together when, over all their common frames, the median distance <= max_distance_m and
+// the median speed difference <= max_speed_difference (m/s); no group consistency.
 PairScores evaluate_threshold(const WalkingScene& scene, double max_distance_m, double max_speed_difference,
                               double velocity_span_s);
 
-// One example per pair and frame where both are seen (window features as GroupMembership computes them),
-// each pair weighing 1 in total.
-std::vector<PairExample> training_examples(const WalkingScene& scene, const GroupOptions& options);
-
-// Trains the pair model on `scenes`: logistic regression on their examples, then the decision threshold
-// (a shift of the bias) that maximises the mean pair F1 over these same scenes with options.linkage, then
-// one positive scale on the log-odds fitted to the pairs' labels (calibrates pair_probability without
-// changing any decision).
-PairModel train_group_model(const std::vector<WalkingScene>& scenes, const GroupOptions& options, double l2);
-
-// The L2 penalty from `candidates` whose models, trained leave-one-scene-out within `scenes`, score the best
-// mean pair F1 on the scene left out (so the held-out scene of an outer evaluation is never looked at).
-// With one scene or one candidate, the first candidate.
-double choose_l2(const std::vector<WalkingScene>& scenes, const GroupOptions& options,
-                 const std::vector<double>& candidates);
+// Choosing and fitting methods (rules, pair models) on scenes: group_selection.h.
 
 }  // namespace bodyrec

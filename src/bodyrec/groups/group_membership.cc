@@ -22,14 +22,25 @@ void require_positive(double v, const char* name) {
 }  // namespace
 
 void GroupOptions::check() const {
-  require_positive(window_s, "window_s");
+  if (!(window_s > 0)) throw UsageError("group options: window_s must be > 0, got " + std::to_string(window_s));
   require_positive(velocity_span_s, "velocity_span_s");
+  require_positive(max_history_s, "max_history_s");
   require_positive(units_per_metre, "units_per_metre");
   require_positive(forget_after_s, "forget_after_s");
   if (!(evidence_half_life_s >= 0) || !std::isfinite(evidence_half_life_s))
     throw UsageError("group options: evidence_half_life_s must be >= 0, got " + std::to_string(evidence_half_life_s));
   if (!(min_moving_fraction >= 0 && min_moving_fraction <= 1))
     throw UsageError("group options: min_moving_fraction must be in [0, 1], got " + std::to_string(min_moving_fraction));
+}
+
+GroupOptions options_for(std::shared_ptr<const PairModel> model, GroupOptions base) {
+  if (!model) throw UsageError("group options: no model given");
+  base.window_s = model->window_s;
+  base.velocity_span_s = model->velocity_span_s;
+  base.min_moving_fraction = model->min_moving_fraction;
+  base.linkage = model->linkage;
+  base.model = std::move(model);
+  return base;
 }
 
 GroupMembership::GroupMembership(GroupOptions options) : options_(std::move(options)) {
@@ -55,20 +66,33 @@ void GroupMembership::update(double t, const std::vector<std::pair<int, cv::Poin
       throw UsageError("group membership: track " + std::to_string(id) + " has a non-finite position");
     PersonHistory& h = people_[id];
     h.add(step_, t, position / options_.units_per_metre, options_.velocity_span_s);
-    h.drop_before(t - options_.window_s);
+    h.drop_before(t - span());
   }
   std::vector<int> gone;
   for (const auto& [id, history] : people_)
     if (history.last_seen() < t - options_.forget_after_s) gone.push_back(id);
   for (int id : gone) drop(id);
 
+  const bool whole_time = std::isinf(options_.window_s);  // the latest window replaces the evidence
+  // A rule over the whole common time needs only running medians (pair_features would cost time in
+  // proportion to the history).
+  const bool running = whole_time && model_->rule;
   const double decay_rate = options_.evidence_half_life_s > 0 ? std::log(2.0) / options_.evidence_half_life_s : 0;
   for (size_t i = 0; i < present.size(); ++i) {
     for (size_t j = i + 1; j < present.size(); ++j) {
-      const auto f = pair_features(people_[present[i]], people_[present[j]], t, options_.window_s);
+      std::optional<PairFeatures> f;
+      if (running) {
+        const PersonSample& a = people_[present[i]].samples().back();
+        const PersonSample& b = people_[present[j]].samples().back();
+        RunningPairStatistics& r = running_[{present[i], present[j]}];
+        if (a.has_velocity && b.has_velocity) r.add(a, b, span());
+        f = r.features();
+      } else {
+        f = pair_features(people_[present[i]], people_[present[j]], t, span());
+      }
       if (!f || !counts(*f)) continue;
       Evidence& e = evidence_[{present[i], present[j]}];
-      const double keep = e.weight > 0 ? std::exp(-decay_rate * (t - e.last_t)) : 0;
+      const double keep = whole_time || !(e.weight > 0) ? 0.0 : std::exp(-decay_rate * (t - e.last_t));
       e.sum = keep * e.sum + model_->logit(f->values);
       e.weight = keep * e.weight + 1;
       e.last_t = t;
@@ -110,6 +134,8 @@ void GroupMembership::regroup() {
   }
 }
 
+double GroupMembership::span() const { return std::min(options_.window_s, options_.max_history_s); }
+
 bool GroupMembership::counts(const PairFeatures& f) const {
   return f.moving_fraction >= options_.min_moving_fraction;
 }
@@ -138,7 +164,7 @@ double GroupMembership::pair_probability(int a, int b) const {
 std::optional<PairFeatures> GroupMembership::window_features(int a, int b) const {
   const auto ia = people_.find(a), ib = people_.find(b);
   if (ia == people_.end() || ib == people_.end()) return std::nullopt;
-  return pair_features(ia->second, ib->second, last_t_, options_.window_s);
+  return pair_features(ia->second, ib->second, last_t_, span());
 }
 
 void GroupMembership::forget(int id) {
@@ -151,6 +177,8 @@ void GroupMembership::drop(int id) {
   group_of_.erase(id);
   for (auto it = evidence_.begin(); it != evidence_.end();)
     it = it->first.first == id || it->first.second == id ? evidence_.erase(it) : std::next(it);
+  for (auto it = running_.begin(); it != running_.end();)
+    it = it->first.first == id || it->first.second == id ? running_.erase(it) : std::next(it);
 }
 
 std::vector<int> GroupMembership::people() const {

@@ -1,13 +1,16 @@
 // Online group membership from trajectories: who walks together, updated every frame from tracked
 // positions (ground plane in metres, or image pixels with a pixels-per-metre scale). Each update, every
-// pair of people seen in it gets the learned pair model's log-odds for the last `window_s` seconds
-// (pair_features.h); a pair's evidence is the mean of those log-odds over the time both were seen
-// (optionally fading with a half-life); groups are the connected components of the pairs with positive
-// evidence (group consistency: A-B and B-C together puts A and C together even when A-C alone is weak;
-// in leave-one-scene-out tests this beat average linkage, which is kept as an option). The offline
-// evaluation (`bodyrec eval groups`) replays ground truth through this class.
+// pair of people seen in it gets the pair model's log-odds for its features over the last `window_s`
+// seconds, or over all its common time so far (pair_features.h). A pair's evidence is the mean of those
+// log-odds over the time both were seen (optionally fading with a half-life), or with the whole-time
+// window the latest one; groups are the connected components of the pairs with positive evidence (group
+// consistency: A-B and B-C together puts A and C together even when A-C alone is weak), or other
+// linkages. The default model, a learned rule on median distance and speed difference over the whole
+// common time, is the method that scored best in nested leave-one-scene-out (docs/benchmarks.md). The
+// offline evaluation (`bodyrec eval groups`) replays ground truth through this class.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,15 +24,17 @@
 
 namespace bodyrec {
 
-enum class GroupLinkage {
-  kNone,     // offline scoring only: a pair is together when its own evidence is > 0 (no consistency)
-  kSingle,   // connected components of the pairs with evidence > 0
-  kAverage,  // merge clusters while the mean evidence over their known pairs is > 0
-};
-
+// The defaults of window_s, velocity_span_s, min_moving_fraction and linkage are the settings of the
+// built-in model for new scenes (options_for gives any model's).
 struct GroupOptions {
-  double window_s = 8.0;          // pair features over the last window_s seconds (the models' window)
-  double velocity_span_s = 0.4;   // velocity = displacement over at least this long (the models' span)
+  // Pair features over the last window_s seconds (the model's window). Infinite: over all the pair's
+  // common time so far (at most max_history_s), and a pair's evidence is then its latest window's log-odds (the latest window holds
+  // all the earlier ones), not their mean.
+  double window_s = std::numeric_limits<double>::infinity();
+  // The longest history kept and looked at, whatever the window: bounds memory and time for people who
+  // stay in view for long (longer than anyone in the walking-group scenes, so their figures hold).
+  double max_history_s = 120.0;
+  double velocity_span_s = 2.0;   // velocity = displacement over at least this long (the model's span)
   double units_per_metre = 1.0;   // positions are divided by this (pixels per metre for image positions)
   double forget_after_s = 2.0;    // ids not updated for this long are forgotten
   double evidence_half_life_s = 0;  // 0: a pair's evidence is the mean over all its common time
@@ -41,10 +46,15 @@ struct GroupOptions {
   // The pair model; null = the built-in model trained on all walking-group scenes.
   std::shared_ptr<const PairModel> model;
 
-  // Throws UsageError naming the field when a value is out of range (window_s, velocity_span_s,
-  // units_per_metre, forget_after_s > 0; evidence_half_life_s >= 0; min_moving_fraction in [0, 1]).
+  // Throws UsageError naming the field when a value is out of range (window_s > 0, may be infinite;
+  // velocity_span_s, max_history_s, units_per_metre, forget_after_s > 0 and finite; evidence_half_life_s
+  // >= 0; min_moving_fraction in [0, 1]).
   void check() const;
 };
+
+// `base` with `model` and the settings it was trained with (window_s, velocity_span_s,
+// min_moving_fraction, linkage).
+GroupOptions options_for(std::shared_ptr<const PairModel> model, GroupOptions base = {});
 
 class GroupMembership {
  public:
@@ -67,7 +77,8 @@ class GroupMembership {
   double pair_probability(int a, int b) const;
   // Their evidence (mean log-odds, > 0 means together), if they were ever seen together.
   std::optional<double> pair_evidence(int a, int b) const;
-  // Features of a and b over the window ending at the last update, if both were in it.
+  // Features of a and b over the window ending at the last update (at most max_history_s long), if both
+  // were in it.
   std::optional<PairFeatures> window_features(int a, int b) const;
   // Whether a window's features add evidence (min_moving_fraction).
   bool counts(const PairFeatures& f) const;
@@ -86,7 +97,8 @@ class GroupMembership {
     double last_t = 0;
   };
   void regroup();
-  void drop(int id);  // forget without regrouping
+  void drop(int id);    // forget without regrouping
+  double span() const;  // seconds of history the features cover: min(window_s, max_history_s)
 
   GroupOptions options_;
   std::shared_ptr<const PairModel> model_;
@@ -94,6 +106,7 @@ class GroupMembership {
   double last_t_ = 0;
   std::map<int, PersonHistory> people_;
   std::map<std::pair<int, int>, Evidence> evidence_;  // keys (smaller id, larger id)
+  std::map<std::pair<int, int>, RunningPairStatistics> running_;  // rule models over the whole common time
   std::map<int, int> group_of_;
   int next_group_id_ = 1;
 };

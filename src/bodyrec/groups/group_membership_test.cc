@@ -74,7 +74,9 @@ TEST(GroupMembership, PixelPositionsWithAScaleGiveTheSameGroups) {
 }
 
 TEST(GroupMembership, ForgetsPeopleWhoLeftAndBoundsMemory) {
-  GroupMembership g;
+  GroupOptions windowed;
+  windowed.window_s = 8;
+  GroupMembership g(windowed);
   run(g, 0, 10, friends_and_passer_by);
   g.forget(2);
   EXPECT_EQ(g.pair_probability(1, 2), 0.0);
@@ -85,10 +87,20 @@ TEST(GroupMembership, ForgetsPeopleWhoLeftAndBoundsMemory) {
   const auto f = g.window_features(1, 1);
   ASSERT_TRUE(f);  // a person paired with itself: only the window's samples remain
   EXPECT_LE(f->samples, 8 * 7 + 1);
+
+  // Over the whole common time (the default), history is kept up to max_history_s.
+  GroupOptions whole;
+  whole.max_history_s = 30;
+  GroupMembership w(whole);
+  run(w, 0, 20, friends_and_passer_by);
+  EXPECT_EQ(w.window_features(1, 2)->samples, 140);  // 141 updates, all but the first (no velocity yet)
+  run(w, 20, 30, friends_and_passer_by);
+  EXPECT_LE(w.window_features(1, 2)->samples, 30 * 7 + 1);
 }
 
 TEST(GroupMembership, WithAHalfLifeAPairThatSplitsUpLeavesItsGroup) {
   GroupOptions options;
+  options.window_s = 8;  // the built-in rule per 8 s window, its votes fading with a 2 s half-life
   options.evidence_half_life_s = 2;
   GroupMembership g(options);
   // Together for 12 s, then 2 turns north while 1 walks on east.
@@ -101,6 +113,21 @@ TEST(GroupMembership, WithAHalfLifeAPairThatSplitsUpLeavesItsGroup) {
   run(g, 12, 8, at);
   EXPECT_TRUE(g.groups().empty());
   EXPECT_LT(g.pair_probability(1, 2), 0.5);
+}
+
+TEST(GroupMembership, OverTheWholeCommonTimeAPairLeavesItsGroupOnceApartLongerThanTogether) {
+  GroupMembership g;  // the default: the rule on medians over all the pair's common time
+  const auto at = [](double t) -> Positions {
+    const double after = std::max(0.0, t - 12);
+    return {{1, {1.3 * t, 0.0}}, {2, {1.3 * (t - after), 0.7 + 1.3 * after}}};
+  };
+  run(g, 0, 12, at);
+  EXPECT_EQ(g.groups(), (std::vector<std::vector<int>>{{1, 2}}));
+  run(g, 12, 8, at);  // apart for 8 s of 20: the medians still say together
+  EXPECT_EQ(g.groups(), (std::vector<std::vector<int>>{{1, 2}}));
+  run(g, 20, 6, at);  // apart for 14 s of 26
+  EXPECT_TRUE(g.groups().empty());
+  EXPECT_LT(g.pair_probability(1, 2), 0.1);
 }
 
 TEST(GroupMembership, RejectsTimeGoingBackDuplicateIdsAndBadOptions) {

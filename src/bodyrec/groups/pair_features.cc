@@ -19,6 +19,15 @@ double median(std::vector<double> v) {
 
 double cross(cv::Point2d a, cv::Point2d b) { return a.x * b.y - a.y * b.x; }
 
+// The median of sorted values as median() computes it.
+double sorted_median(const std::vector<double>& v) {
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2] + v[n / 2 - 1]);
+}
+
+void insert_sorted(std::vector<double>& v, double x) { v.insert(std::upper_bound(v.begin(), v.end(), x), x); }
+void erase_sorted(std::vector<double>& v, double x) { v.erase(std::lower_bound(v.begin(), v.end(), x)); }
+
 }  // namespace
 
 const std::array<const char*, kPairFeatureCount> kPairFeatureNames = {
@@ -125,6 +134,42 @@ std::optional<PairFeatures> pair_features(const PersonHistory& a, const PersonHi
   v[12] = v[8] * v[0];
   v[13] = v[5] * v[0];
   v[14] = v[9] * v[0];
+  return f;
+}
+
+}  // namespace bodyrec
+
+namespace bodyrec {
+
+void RunningPairStatistics::add(const PersonSample& a, const PersonSample& b, double span_s) {
+  // The same arithmetic as pair_features.
+  const double speed_a = cv::norm(a.velocity), speed_b = cv::norm(b.velocity);
+  Sample s{a.t, cv::norm(a.position - b.position), std::abs(speed_a - speed_b),
+           speed_a > kMovingSpeed && speed_b > kMovingSpeed};
+  samples_.push_back(s);
+  insert_sorted(distances_, s.distance);
+  insert_sorted(speed_differences_, s.speed_difference);
+  moving_ += s.moving;
+  const double t_begin = a.t - span_s;
+  while (!samples_.empty() && !(samples_.front().t >= t_begin)) {
+    const Sample& old = samples_.front();
+    erase_sorted(distances_, old.distance);
+    erase_sorted(speed_differences_, old.speed_difference);
+    moving_ -= old.moving;
+    samples_.pop_front();
+  }
+}
+
+std::optional<PairFeatures> RunningPairStatistics::features() const {
+  const size_t n = samples_.size();
+  if (n < 2) return std::nullopt;
+  PairFeatures f;
+  f.samples = static_cast<int>(n);
+  f.median_distance = sorted_median(distances_);
+  f.median_speed_difference = sorted_median(speed_differences_);
+  f.values[0] = std::log(f.median_distance + 0.1);
+  f.values[4] = f.median_speed_difference;
+  f.values[8] = f.moving_fraction = static_cast<double>(moving_) / n;
   return f;
 }
 

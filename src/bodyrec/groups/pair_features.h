@@ -4,9 +4,11 @@
 #pragma once
 
 #include <array>
+#include <bitset>
 #include <deque>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/types.hpp>
 
@@ -49,6 +51,8 @@ class PersonHistory {
 constexpr int kPairFeatureCount = 15;
 using PairFeatureVector = std::array<double, kPairFeatureCount>;
 extern const std::array<const char*, kPairFeatureCount> kPairFeatureNames;
+// A subset of the features (bit i: feature i of kPairFeatureNames).
+using PairFeatureSet = std::bitset<kPairFeatureCount>;
 
 struct PairFeatures {
   PairFeatureVector values{};
@@ -63,5 +67,28 @@ struct PairFeatures {
 // 2 such samples exist.
 std::optional<PairFeatures> pair_features(const PersonHistory& a, const PersonHistory& b, double t_end,
                                           double window_s);
+
+// What a rule needs of a pair's features over its common samples of the last `span_s` seconds (median
+// distance, median speed difference, moving fraction), kept up to date one sample at a time: recomputing
+// them with pair_features costs time in proportion to the history at every update, which over a pair's
+// whole common time grows large. The values are exactly pair_features()'s over the same samples.
+class RunningPairStatistics {
+ public:
+  // Adds the two people's samples of one update (REQUIRES both with velocities and t, the same in both,
+  // after the previous call's), then drops the samples older than t - span_s.
+  void add(const PersonSample& a, const PersonSample& b, double span_s);
+  // As pair_features: nothing with fewer than 2 samples; else samples, median_distance,
+  // median_speed_difference, moving_fraction and values[0], values[4], values[8] (the others 0).
+  std::optional<PairFeatures> features() const;
+
+ private:
+  struct Sample {
+    double t, distance, speed_difference;
+    bool moving;
+  };
+  std::deque<Sample> samples_;
+  std::vector<double> distances_, speed_differences_;  // sorted
+  int moving_ = 0;
+};
 
 }  // namespace bodyrec
