@@ -24,6 +24,7 @@ struct ReidCliOptions {
   std::string match_views;  // "all" or "near"; empty: near for the thesis's kaze matcher, else all
   std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
   int max_events_per_user = GalleryOptions{}.max_events_per_user;  // event history cap; 0 = all
+  std::string sensor;  // recorded with the gallery's events (reid --sensor-id)
   OnlineReidOptions reid;
   int stature_wait = -1;  // --stature-wait; -1: reid's default, 0 when the bodies come from our own depth segmentation
 };
