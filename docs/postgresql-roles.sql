@@ -22,7 +22,8 @@ GRANT USAGE ON SCHEMA public TO bodyrec_sensor;
 
 -- Part 2, as bodyrec_admin after `bodyrec gallery --gallery postgresql://bodyrec_admin@HOST/DB init`
 -- (the tables exist then; a later schema upgrade adds columns, not tables, so these grants hold):
-GRANT SELECT, UPDATE ON bodyrec_gallery TO bodyrec_sensor;
+GRANT SELECT ON bodyrec_gallery TO bodyrec_sensor;
+GRANT SELECT, UPDATE ON gallery_state TO bodyrec_sensor;
 GRANT SELECT, INSERT, UPDATE ON users, scans TO bodyrec_sensor;
 GRANT SELECT, INSERT, DELETE ON events TO bodyrec_sensor;
 GRANT USAGE ON SEQUENCE users_id_seq, scans_id_seq, events_id_seq TO bodyrec_sensor;

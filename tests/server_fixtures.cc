@@ -204,20 +204,23 @@ PostgresServer* PostgresServer::shared(std::string* why) {
   static std::once_flag once;
   static std::unique_ptr<PostgresServer> server;
   static std::string reason;
-  std::call_once(once, [] {
-    const std::string bin = postgres_bin();
-    if (bin.empty()) {
-      reason = "PostgreSQL server programs not found under /usr/lib/postgresql/<version>/bin (scripts/install-deps "
-               "installs the postgresql package; or set BODYREC_PG_BIN)";
-      return;
-    }
-    server.reset(new PostgresServer(bin));
-  });
+  std::call_once(once, [] { server = make(false, &reason); });
   if (!server && why) *why = reason;
   return server.get();
 }
 
-PostgresServer::PostgresServer(const std::string& bin) : bin_(bin) {
+std::unique_ptr<PostgresServer> PostgresServer::make(bool durable, std::string* why) {
+  const std::string bin = postgres_bin();
+  if (bin.empty()) {
+    if (why)
+      *why = "PostgreSQL server programs not found under /usr/lib/postgresql/<version>/bin (scripts/install-deps "
+             "installs the postgresql package; or set BODYREC_PG_BIN)";
+    return nullptr;
+  }
+  return std::unique_ptr<PostgresServer>(new PostgresServer(bin, durable));
+}
+
+PostgresServer::PostgresServer(const std::string& bin, bool durable) : bin_(bin), durable_(durable) {
   user_ = ::geteuid() == 0 ? "postgres" : "";
   folder_ = make_server_folder("bodyrec-pg-", user_);
   const std::string log = folder_ + "/initdb.log";
@@ -238,12 +241,11 @@ PostgresServer::~PostgresServer() {
 }
 
 void PostgresServer::start() {
-  // Tests only: fsync off (a crash of the machine is not what they test; a server restart keeps
-  // every commit either way).
   const std::string log = folder_ + "/server.log";
-  server_.start({bin_ + "/postgres", "-D", folder_ + "/data", "-k", folder_, "-c", "listen_addresses=", "-c",
-                 "fsync=off", "-c", "full_page_writes=off", "-c", "max_connections=40"},
-                user_, log, SIGQUIT);
+  std::vector<std::string> argv = {bin_ + "/postgres", "-D", folder_ + "/data", "-k", folder_, "-c", "listen_addresses=",
+                                   "-c", "max_connections=40"};
+  if (!durable_) argv.insert(argv.end(), {"-c", "fsync=off", "-c", "full_page_writes=off"});
+  server_.start(argv, user_, log, SIGQUIT);
   const std::string ping = "host=" + folder_ + " dbname=postgres user=postgres connect_timeout=2";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (PQping(ping.c_str()) != PQPING_OK) {

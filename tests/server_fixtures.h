@@ -56,6 +56,10 @@ class PostgresServer {
   // `why` saying what is missing, when PostgreSQL's server programs are not installed (set
   // BODYREC_PG_BIN to their folder when they are elsewhere than /usr/lib/postgresql/<version>/bin).
   static PostgresServer* shared(std::string* why);
+  // A server of one's own. `durable`: fsync on, as a production server (the benchmarks); the tests'
+  // servers run with fsync off (a machine crash is not what they test; a server restart keeps every
+  // commit either way). Null with `why` when the server programs are missing.
+  static std::unique_ptr<PostgresServer> make(bool durable, std::string* why);
 
   // A new empty database on the server; returns its connection URI (as the superuser `postgres`).
   std::string create_database(const std::string& prefix = "t");
@@ -80,8 +84,9 @@ class PostgresServer {
   ~PostgresServer();
 
  private:
-  PostgresServer(const std::string& bin);
+  PostgresServer(const std::string& bin, bool durable);
   std::string bin_, folder_, user_;
+  bool durable_ = false;
   ServerProcess server_;
   int databases_ = 0;
 };

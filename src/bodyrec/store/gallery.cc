@@ -59,8 +59,9 @@ void Gallery::migrate() {
 
 void Gallery::load_cache() {
   for (auto& view : cache_) view.clear();
-  // The token first: a write committed during the load makes the next refresh() load again.
-  data_version_ = backend_->change_token();
+  // The counter first: a write committed during the load makes the next refresh() load again.
+  backend_->may_have_changed();
+  scan_changes_ = read_scan_changes();
   sql::Statement s(*db_,
                    "SELECT \"user\", view, features, descriptor, descriptor_version, quality FROM scans "
                    "ORDER BY \"user\", view");
@@ -78,11 +79,23 @@ void Gallery::load_cache() {
   cache_dirty_ = false;
 }
 
+int64_t Gallery::read_scan_changes() { return db_->query_int("SELECT scan_changes FROM gallery_state"); }
+
 bool Gallery::refresh() {
-  const int64_t version = backend_->change_token();
-  if (version == data_version_ && !cache_dirty_) return false;
+  if (!cache_dirty_ && (!backend_->may_have_changed() || read_scan_changes() == scan_changes_)) return false;
   load_cache();
   return true;
+}
+
+void Gallery::scans_changed() {
+  if (txn_scan_changes_) return;
+  sql::Statement s(*db_, "UPDATE gallery_state SET scan_changes = scan_changes + 1 RETURNING scan_changes");
+  if (!s.step()) throw ProcessingError(path_ + ": gallery_state has no row");
+  txn_scan_changes_ = s.column_int(0);
+  s.reset();
+  // Writers take turns (begin_write), so the count moved by this transaction alone when it is one more
+  // than the cache's: the cache, which takes this transaction's writes, is then current after the commit.
+  txn_cache_was_current_ = *txn_scan_changes_ == scan_changes_ + 1;
 }
 
 void Gallery::cache_put(const GalleryEntry& entry) {
@@ -113,8 +126,9 @@ void Gallery::begin() {
   if (options_.read_only) throw ProcessingError(path_ + ": gallery opened read-only, cannot write");
   if (depth_++ == 0) {
     aborted_ = false;
+    txn_scan_changes_.reset();
     try {
-      write_token_ = backend_->begin_write();
+      backend_->begin_write();
     } catch (...) {
       depth_ = 0;
       throw;
@@ -134,9 +148,11 @@ void Gallery::commit() {
     rollback_now();
     throw;
   }
-  // PostgreSQL counts every write, this one's too: when the count moved by this write alone, the cache
-  // (which took this write) is current; otherwise another process wrote and refresh() loads it.
-  if (write_token_ && *write_token_ == data_version_ + 1) data_version_ = *write_token_;
+  if (txn_scan_changes_) {
+    if (txn_cache_was_current_) scan_changes_ = *txn_scan_changes_;
+    else cache_dirty_ = true;  // another process changed scans before: refresh() loads them
+    txn_scan_changes_.reset();
+  }
 }
 
 void Gallery::rollback() {

@@ -135,9 +135,9 @@ class Gallery {
   // candidate's quality against it before calling put_scan, which costs a commit (and an fsync) even
   // when it keeps the stored scan.
   const GalleryEntry* find(UserId user, View view) const;
-  // Reloads the cache when another connection changed the gallery (SQLite: PRAGMA data_version, no I/O
-  // when nothing changed; PostgreSQL: one query of the write counter). Returns true when it reloaded.
-  // Call it once per frame or per decision.
+  // Reloads the cache when another connection changed scans (gallery_state.scan_changes; SQLite asks
+  // only after PRAGMA data_version moved, no I/O when nothing changed; PostgreSQL: one query). Others'
+  // events do not reload it. Returns true when it reloaded. Call it once per frame or per decision.
   bool refresh();
 
   std::optional<User> user(UserId id);
@@ -164,14 +164,18 @@ class Gallery {
   void touch(UserId user, GalleryTime time);
   void cache_put(const GalleryEntry& entry);
   void cache_erase(UserId user);
+  void scans_changed();  // inside a write: counts a change of scans (once per transaction)
+  int64_t read_scan_changes();
 
   std::string path_;
   GalleryOptions options_;
   std::unique_ptr<store::GalleryBackend> backend_;
   sql::Connection* db_ = nullptr;  // backend_'s
   std::array<std::vector<GalleryEntry>, kViewCount> cache_;
-  int64_t data_version_ = 0;      // the backend's change token the cache reflects
-  std::optional<int64_t> write_token_;  // the change token the open write transaction takes (PostgreSQL)
+  int64_t scan_changes_ = 0;      // gallery_state.scan_changes the cache reflects
+  // This transaction's value of scan_changes once it changed scans; whether the cache was current before.
+  std::optional<int64_t> txn_scan_changes_;
+  bool txn_cache_was_current_ = false;
   int depth_ = 0;                 // nesting of transaction()/internal writes
   bool cache_dirty_ = false;
   bool aborted_ = false;          // an inner write failed: the outer transaction must roll back

@@ -5,10 +5,11 @@
 //
 //                     SQLite (a file)                         PostgreSQL (a connection URI)
 //  schema version     PRAGMA user_version, application_id     table bodyrec_gallery (one row)
-//  write transaction  BEGIN IMMEDIATE (busy timeout)          BEGIN + UPDATE of bodyrec_gallery's row
-//                                                             (row lock; lock_timeout = busy timeout)
-//  others' writes     PRAGMA data_version                     bodyrec_gallery.changes, bumped by every
-//                                                             write transaction
+//  write transaction  BEGIN IMMEDIATE (busy timeout)          BEGIN + SELECT ... FOR UPDATE of
+//                                                             gallery_state's row (lock_timeout = busy
+//                                                             timeout)
+//  others' writes     PRAGMA data_version (no I/O), then      gallery_state.scan_changes (one query)
+//                     gallery_state.scan_changes
 //  after an erasure   secure_delete, VACUUM, WAL checkpoint   VACUUM FULL of the three tables (owner
 //                                                             only), CHECKPOINT (when allowed)
 #pragma once
@@ -44,13 +45,13 @@ class GalleryBackend {
   virtual void set_version(int version) = 0;
 
   // Starts a write transaction that excludes other writers until it ends (they wait up to the busy
-  // timeout). Returns the value the database's write counter takes in this transaction when it keeps
-  // one (PostgreSQL), nullopt when it does not (SQLite: data_version does not move on one's own writes).
-  virtual std::optional<int64_t> begin_write() = 0;
+  // timeout).
+  virtual void begin_write() = 0;
   void commit() { connection().exec("COMMIT"); }
-  // A number that changes when another connection commits a write (cheap; no I/O on SQLite when
-  // nothing changed).
-  virtual int64_t change_token() = 0;
+  // False only when no other connection can have committed anything since the previous call (SQLite's
+  // data_version, no I/O); PostgreSQL cannot tell without a query and says true. The gallery then reads
+  // gallery_state.scan_changes.
+  virtual bool may_have_changed() = 0;
 
   // After forget/purge/prune, outside any transaction: rewrites the database so that erased rows leave
   // no bytes in its files; says in report.note what it could not do.

@@ -57,27 +57,26 @@ class PostgresBackend : public GalleryBackend {
         "CREATE TABLE IF NOT EXISTS bodyrec_gallery("
         "  one BOOLEAN PRIMARY KEY DEFAULT TRUE CHECK (one),"
         "  application TEXT NOT NULL,"
-        "  schema_version INTEGER NOT NULL,"
-        "  changes BIGINT NOT NULL DEFAULT 0)");
+        "  schema_version INTEGER NOT NULL)");
     sql::Statement s(*db_,
                      "INSERT INTO bodyrec_gallery(application, schema_version) VALUES (?1, ?2) "
-                     "ON CONFLICT (one) DO UPDATE SET schema_version = EXCLUDED.schema_version, "
-                     "changes = bodyrec_gallery.changes + 1");
+                     "ON CONFLICT (one) DO UPDATE SET schema_version = EXCLUDED.schema_version");
     s.bind(1, std::string(kApplication)).bind(2, static_cast<int64_t>(version)).run();
   }
 
-  // The counter row's lock is the gallery's write lock: held from the first statement of a write to its
-  // commit, so writers take turns as on SQLite (a scan's best-of check and its write see one state).
-  std::optional<int64_t> begin_write() override {
+  // The lock on gallery_state's row is the gallery's write lock: held from the first statement of a write
+  // to its commit, so writers take turns as on SQLite (a scan's best-of check and its write see one
+  // state; reads do not wait for it).
+  void begin_write() override {
     db_->exec("BEGIN");
     try {
-      return db_->query_int("UPDATE bodyrec_gallery SET changes = changes + 1 RETURNING changes");
+      db_->exec("SELECT id FROM gallery_state FOR UPDATE");
     } catch (...) {
       db_->rollback_quietly();
       throw;
     }
   }
-  int64_t change_token() override { return db_->query_int("SELECT changes FROM bodyrec_gallery"); }
+  bool may_have_changed() override { return true; }
 
   // DELETE leaves the rows' bytes in the tables' files until their space is reused; VACUUM FULL writes
   // each table anew and truncates the old files. Only the tables' owner may run it (PostgreSQL skips the

@@ -81,11 +81,13 @@ class SqliteBackend : public GalleryBackend {
 
   // BEGIN IMMEDIATE takes the write lock at once, so two writers queue on the busy timeout instead of
   // deadlocking on a lock upgrade.
-  std::optional<int64_t> begin_write() override {
-    db_->exec("BEGIN IMMEDIATE");
-    return std::nullopt;
+  void begin_write() override { db_->exec("BEGIN IMMEDIATE"); }
+  bool may_have_changed() override {
+    const int64_t version = db_->query_int("PRAGMA data_version");
+    const bool changed = version != data_version_;
+    data_version_ = version;
+    return changed;
   }
-  int64_t change_token() override { return db_->query_int("PRAGMA data_version"); }
 
   // Deleted rows are already zeroed by secure_delete, but their old pages may still sit in the WAL and
   // the file keeps its size: VACUUM rewrites the database compactly, then a TRUNCATE checkpoint copies
@@ -107,6 +109,7 @@ class SqliteBackend : public GalleryBackend {
 
  private:
   std::unique_ptr<sql::SqliteConnection> db_;
+  int64_t data_version_ = -1;
 };
 
 }  // namespace

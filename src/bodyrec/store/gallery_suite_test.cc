@@ -47,7 +47,7 @@ TEST_P(GallerySuite, SchemaOneIsUpgradedKeepingEveryRow) {
     Gallery g(path, creating());
     u = g.enrol(make_scan(View::F, 0.5, 1), "alice", 3, "rec1");
   }
-  raw_sql(path, "ALTER TABLE events DROP COLUMN sensor");
+  raw_sql(path, "ALTER TABLE events DROP COLUMN sensor; DROP TABLE gallery_state");
   set_schema_version(path, 1);
   GalleryOptions read_only;
   read_only.read_only = true;
@@ -145,8 +145,24 @@ TEST_P(GallerySuite, CacheIsLoadedOnOpenAndRefreshSeesOtherConnections) {
   EXPECT_TRUE(a.refresh());
   ASSERT_EQ(a.scans(View::F).size(), 1u);
   EXPECT_EQ(a.scans(View::F)[0].user, 4);
-  // One's own writes need no reload; another's erasure shows after refresh.
+  // One's own writes need no reload, nor do another's events; another's new view and erasure do.
   a.enrol(make_scan(View::SL, 0.5, 21));
+  EXPECT_FALSE(a.refresh());
+  Event e;
+  e.user = 2;
+  e.kind = EventKind::kRecognised;
+  b.log_event(e);
+  b.set_label(2, "bob");
+  EXPECT_FALSE(a.refresh());
+  b.put_scan(2, make_scan(View::FR, 0.5, 22));
+  EXPECT_TRUE(a.refresh());
+  EXPECT_NE(a.find(2, View::FR), nullptr);
+  // Both wrote scans since a's last refresh: a's own write cannot tell, the next refresh loads b's.
+  b.put_scan(3, make_scan(View::FR, 0.5, 23));
+  a.put_scan(2, make_scan(View::BL, 0.5, 24));
+  EXPECT_TRUE(a.refresh());
+  EXPECT_NE(a.find(3, View::FR), nullptr);
+  EXPECT_NE(a.find(2, View::BL), nullptr);
   EXPECT_FALSE(a.refresh());
   b.forget(1);
   EXPECT_TRUE(a.refresh());

@@ -99,6 +99,7 @@ PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
     }
     touch(user, scan.time);
     if (sql) {
+      scans_changed();
       GalleryEntry entry;
       entry.user = user;
       entry.view = scan.view;
@@ -163,6 +164,7 @@ UserId Gallery::enrol(const GalleryScan& scan, const std::string& label, std::op
 }
 
 void Gallery::erase_user(UserId user, EraseReport& report) {
+  scans_changed();
   report.users.push_back(user);
   report.scans += static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE \"user\" = ?1", user));
   report.images += static_cast<int>(
@@ -210,6 +212,7 @@ EraseReport Gallery::purge() {
     report.images = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE image_png IS NOT NULL"));
     report.masks = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE mask_png IS NOT NULL"));
     report.events = static_cast<int>(db_->query_int("SELECT count(*) FROM events"));
+    scans_changed();
     db_->exec("DELETE FROM events; DELETE FROM scans; DELETE FROM users;");
     for (auto& view : cache_) view.clear();
   });

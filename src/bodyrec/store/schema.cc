@@ -47,9 +47,16 @@ CREATE TABLE events(
 CREATE INDEX events_user ON events("user", id);
 )sql";
 
-// Version 1 -> 2: the sensor (reid --sensor-id) that logged each event; '' for older events.
+// Version 1 -> 2: the sensor (reid --sensor-id) that logged each event ('' for older events), and a
+// counter of the writes that changed scans, so that a connection reloads its feature cache when another
+// one changed scans (not at every event it logs). Its one row is also PostgreSQL's write lock
+// (gallery_backend.h).
 constexpr const char* kV2 = R"sql(
 ALTER TABLE events ADD COLUMN sensor TEXT NOT NULL DEFAULT '';
+CREATE TABLE gallery_state(
+  id {int} PRIMARY KEY CHECK (id = 1),
+  scan_changes {int} NOT NULL DEFAULT 0);
+INSERT INTO gallery_state(id) VALUES (1);
 )sql";
 
 constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2};
