@@ -2,8 +2,8 @@
 // stripes-sized features (1 x 1410 floats, 5.6 KB): what enrolment and recognition cost on the gallery
 // side. put_scan (a better scan with its 128 x 64 image and mask: one write transaction), log_event (one
 // `recognised` event: one write transaction with the event-cap trim), refresh when nothing changed (what
-// reid does every frame), refresh after another connection logged an event (the whole feature cache is
-// read again), open (connect, schema check, feature cache load), and forget (delete + scrub: SQLite
+// reid does every frame), refresh after another connection logged an event (nothing to reload) or stored
+// a better scan (the whole feature cache is read again), open (connect, schema check, feature cache load), and forget (delete + scrub: SQLite
 // VACUUM + WAL checkpoint; PostgreSQL VACUUM FULL + CHECKPOINT).
 //
 // Args: {backend (0 SQLite, 1 PostgreSQL), users}. SQLite files live in the system temp directory;
@@ -149,12 +149,21 @@ void BM_RefreshAfterAnotherWrite(benchmark::State& state) {
   Event e;
   e.user = 1;
   e.kind = EventKind::kLeft;
+  const bool scans = state.range(2) != 0;
+  GalleryScan s = scan(View::BR, 0, 3000000);
+  int reloads = 0;
   for (auto _ : state) {
     state.PauseTiming();
-    other.log_event(e);
+    if (scans) {
+      s.quality += 1;  // a better scan: the cache must be reloaded
+      other.put_scan(1, s);
+    } else {
+      other.log_event(e);  // an event: the cache stays
+    }
     state.ResumeTiming();
-    benchmark::DoNotOptimize(g.refresh());
+    reloads += g.refresh();
   }
+  state.counters["reloads"] = reloads;
 }
 
 void BM_Open(benchmark::State& state) {
@@ -194,7 +203,15 @@ void sizes(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_PutScan)->Apply(sizes);
 BENCHMARK(BM_LogEvent)->Apply(sizes);
 BENCHMARK(BM_RefreshUnchanged)->Apply(sizes);
-BENCHMARK(BM_RefreshAfterAnotherWrite)->Apply(sizes)->Iterations(20);
+// Third arg: the other connection logs an event (0) or stores a better scan (1).
+BENCHMARK(BM_RefreshAfterAnotherWrite)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int backend : {0, 1})
+        for (int users : {1000, 10000})
+          for (int scans : {0, 1}) b->Args({backend, users, scans});
+      b->ArgNames({"pg", "users", "scan"})->Unit(benchmark::kMillisecond);
+    })
+    ->Iterations(20);
 BENCHMARK(BM_Open)->Apply(sizes)->Iterations(5);
 BENCHMARK(BM_Forget)->Apply(sizes)->Iterations(3);
 

@@ -41,7 +41,7 @@ void Gallery::migrate() {
   if (stamp.empty && !options_.create) throw InputError(path_ + ": " + backend_->empty_kind() + ", not a bodyrec gallery");
   if (options_.read_only)
     throw InputError(path_ + ": gallery schema version " + std::to_string(stamp.version) + " needs an upgrade to " +
-                     std::to_string(kGallerySchemaVersion) + "; open it once for writing");
+                     std::to_string(kGallerySchemaVersion) + "; open it once for writing (bodyrec gallery init)");
   backend_->begin_upgrade();
   try {
     // Another process may have upgraded it while this one waited for the lock.
