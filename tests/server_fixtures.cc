@@ -329,16 +329,24 @@ MosquittoServer::MosquittoServer(const Options& options) : options_(options) {
   user_ = ::geteuid() == 0 ? "mosquitto" : "";
   folder_ = make_server_folder("bodyrec-mqtt-", user_);
   port_ = free_port();
+  // A private copy of a file the broker reads after it dropped root.
+  const auto own_copy = [&](const std::string& from, const std::string& name) {
+    const std::string copy = folder_ + "/" + name;
+    fs::copy_file(from, copy);
+    const Ids ids = ids_for(user_);
+    if (ids.drop && ::chown(copy.c_str(), ids.uid, ids.gid) != 0) throw std::runtime_error("chown " + copy);
+    ::chmod(copy.c_str(), 0600);
+    return copy;
+  };
   std::string config = "listener " + std::to_string(port_) + " 127.0.0.1\n";
+  if (!options_.tls_cafile.empty())
+    config += "cafile " + own_copy(options_.tls_cafile, "ca.pem") + "\ncertfile " +
+              own_copy(options_.tls_certfile, "server.pem") + "\nkeyfile " + own_copy(options_.tls_keyfile, "server.key") +
+              "\n";
   if (options_.password_file.empty()) {
     config += "allow_anonymous true\n";
   } else {
-    const std::string copy = folder_ + "/passwords";
-    fs::copy_file(options_.password_file, copy);
-    const Ids ids = ids_for(user_);
-    if (ids.drop && ::chown(copy.c_str(), ids.uid, ids.gid) != 0) throw std::runtime_error("chown passwords");
-    ::chmod(copy.c_str(), 0600);
-    config += "allow_anonymous false\npassword_file " + copy + "\n";
+    config += "allow_anonymous false\npassword_file " + own_copy(options_.password_file, "passwords") + "\n";
   }
   config += "persistence true\npersistence_location " + folder_ + "/\nautosave_interval 0\n";
   config += "log_dest stderr\nlog_type error\nlog_type warning\nlog_type notice\nlog_type information\n";

@@ -95,6 +95,8 @@ class MosquittoServer {
  public:
   struct Options {
     std::string password_file;  // empty: anonymous clients allowed
+    // TLS on the listener when all three are given (PEM files, copied into the broker's folder).
+    std::string tls_cafile, tls_certfile, tls_keyfile;
   };
   // The broker shared by this test program (anonymous clients), started at the first call, stopped at
   // exit. Null, with `why`, when /usr/sbin/mosquitto is not installed.

@@ -122,7 +122,9 @@ TEST(EventPublisherServer, CredentialsFromTheFileAreUsedAndWrongOnesDeliverNothi
                                           (dir / "passwd.log").string()),
             0);
   std::string why;
-  auto broker = MosquittoServer::make({passwords}, &why);
+  MosquittoServer::Options options;
+  options.password_file = passwords;
+  auto broker = MosquittoServer::make(options, &why);
   if (!broker) {
     if (bodyrec::testing::servers_required()) FAIL() << why;
     GTEST_SKIP() << why;
@@ -142,6 +144,52 @@ TEST(EventPublisherServer, CredentialsFromTheFileAreUsedAndWrongOnesDeliverNothi
   EventPublisher p(o);
   const PublisherStats s = p.close();
   EXPECT_EQ(s.delivered, 1u);
+  EXPECT_EQ(s.pending, 0u);
+}
+
+// mqtts://: the broker's certificate is checked against --events-cafile; without it, against the system's
+// CAs, which do not know this test's CA, so nothing is delivered.
+TEST(EventPublisherServer, TlsDeliversOnlyToABrokerTheCaVouchesFor) {
+  if (!std::filesystem::exists("/usr/bin/openssl")) GTEST_SKIP() << "openssl not installed";
+  bodyrec::testing::TempDir dir;
+  const auto path = [&](const char* name) { return (dir / name).string(); };
+  const std::string log = path("openssl.log");
+  bodyrec::testing::write_text(path("san.ext"), "subjectAltName=IP:127.0.0.1\n");
+  const std::vector<std::vector<std::string>> steps = {
+      {"/usr/bin/openssl", "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", path("ca.key"), "-out",
+       path("ca.pem"), "-days", "2", "-subj", "/CN=bodyrec test CA"},
+      {"/usr/bin/openssl", "req", "-newkey", "rsa:2048", "-nodes", "-keyout", path("server.key"), "-out",
+       path("server.csr"), "-subj", "/CN=127.0.0.1"},
+      {"/usr/bin/openssl", "x509", "-req", "-in", path("server.csr"), "-CA", path("ca.pem"), "-CAkey", path("ca.key"),
+       "-CAcreateserial", "-out", path("server.pem"), "-days", "2", "-extfile", path("san.ext")}};
+  for (const auto& step : steps) ASSERT_EQ(bodyrec::testing::run_program(step, "", log), 0) << bodyrec::testing::read_text(log);
+  std::string why;
+  MosquittoServer::Options options;
+  options.tls_cafile = path("ca.pem");
+  options.tls_certfile = path("server.pem");
+  options.tls_keyfile = path("server.key");
+  auto broker = MosquittoServer::make(options, &why);
+  if (!broker) {
+    if (bodyrec::testing::servers_required()) FAIL() << why;
+    GTEST_SKIP() << why;
+  }
+  EventPublisherOptions o;
+  o.target = parse_mqtt_uri("mqtts://127.0.0.1:" + std::to_string(broker->port()) + "/tls");
+  o.spool = path("events.spool");
+  o.drain_seconds = 3;
+  {
+    EventPublisher p(o);  // the system's CAs: the broker is not trusted
+    p.publish("tls/door/reid", payload(1));
+    const PublisherStats s = p.close();
+    EXPECT_EQ(s.delivered, 0u);
+    EXPECT_EQ(s.pending, 1u);
+  }
+  o.cafile = path("ca.pem");
+  o.drain_seconds = 60;
+  EventPublisher p(o);
+  p.publish("tls/door/reid", payload(2));
+  const PublisherStats s = p.close();
+  EXPECT_EQ(s.delivered, 2u);
   EXPECT_EQ(s.pending, 0u);
 }
 
