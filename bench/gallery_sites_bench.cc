@@ -7,7 +7,7 @@
 // VACUUM + WAL checkpoint; PostgreSQL VACUUM FULL + CHECKPOINT).
 //
 // Args: {backend (0 SQLite, 1 PostgreSQL), users}. SQLite files live in the system temp directory;
-// PostgreSQL is a private durable server (fsync on, Unix socket, tests/server_fixtures.h) on the same
+// PostgreSQL is a private durable server (fsync on, Unix socket, tests/support/server_fixtures.h) on the same
 // disk, so both pay an fsync per commit. The fixture galleries are built once per process (minutes for
 // 10 000 users on PostgreSQL: one round trip per statement).
 #include <filesystem>

@@ -21,7 +21,7 @@ struct ReidCommand {
   bool json = false, quiet = false;
 
   void run() const {
-    const ReidInput in = open_reid_input(input, options);  // before any file is created
+    ReidInput in = open_reid_input(input, options);  // before any file is created
     RunEvents events = open_events(event_options, "reid");
     ReidCliOptions o = options;
     o.sensor = events.sensor;
@@ -29,10 +29,11 @@ struct ReidCommand {
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(o, o.gallery.path);
+    GalleryReidStore store(*gallery, *in.matcher, {input, std::nullopt});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
-    const int frames = run_reid(in, o, *gallery, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, o, store, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -75,7 +76,7 @@ struct ReidCommand {
                                           {"ms_per_frame", per_frame},
                                           {"ms_per_body", per_body},
                                           {"matcher", options.matcher},
-                                          {"match_views", match_views(options)},
+                                          {"match_views", to_string(match_views(options))},
                                           {"sensor", events.sensor},
                                           {"events", delivery}})
                               .dump()

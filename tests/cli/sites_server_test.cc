@@ -1,4 +1,4 @@
-// Several sensors of a site (issue 47) as a user meets them, on private servers (tests/server_fixtures.h,
+// Several sensors of a site (issue 47) as a user meets them, on private servers (tests/support/server_fixtures.h,
 // ctest label `server`): `reid` and `gallery` and `report` on a PostgreSQL gallery, events of `reid` and
 // `groups` over MQTT, a broker that is down, a PostgreSQL restart in the middle of a run, and the
 // refusal of passwords on the command line.

@@ -1,4 +1,4 @@
-// The publisher against a real Mosquitto broker (tests/server_fixtures.h, ctest label `server`): QoS 1
+// The publisher against a real Mosquitto broker (tests/support/server_fixtures.h, ctest label `server`): QoS 1
 // delivery in order, a broker that stops and comes back in the middle, spool overflow, credentials.
 #include <sys/stat.h>
 

@@ -1,4 +1,4 @@
-// The gallery on PostgreSQL (issue 47), on a private server (tests/server_fixtures.h, ctest label
+// The gallery on PostgreSQL (issue 47), on a private server (tests/support/server_fixtures.h, ctest label
 // `server`): the suites every database passes, then what only PostgreSQL has: connection URIs and
 // passwords, erasure as pg_dump and the table files see it, a server restart during writes, and the
 // least-privilege roles of docs/postgresql-roles.sql.
