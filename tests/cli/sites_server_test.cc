@@ -197,12 +197,7 @@ TEST(SitesCli, ReidEventsArriveOverMqttInOrder) {
 // Issue 47: the broker stops in the middle of a run and starts again: every event arrives, in order, none
 // twice after dropping repeats by event_id.
 TEST(SitesCli, ABrokerRestartInTheMiddleOfARunLosesNoEvent) {
-  std::string why;
-  auto broker = MosquittoServer::make({}, &why);
-  if (!broker) {
-    if (servers_required()) FAIL() << why;
-    GTEST_SKIP() << why;
-  }
+  BODYREC_OWN_MOSQUITTO(broker, MosquittoServer::Options{});
   TempDir dir;
   MqttSubscriber sub(broker->port(), "mid/#", "sites-mid");
   ASSERT_TRUE(sub.subscribed(std::chrono::seconds(20)));
@@ -232,12 +227,7 @@ TEST(SitesCli, ABrokerRestartInTheMiddleOfARunLosesNoEvent) {
 // The broker is down for a whole run: the run does not wait, says what it kept, and the next run delivers
 // those events first; an overflowing spool says how many it lost.
 TEST(SitesCli, WithTheBrokerDownEventsWaitInTheSpoolForTheNextRun) {
-  std::string why;
-  auto broker = MosquittoServer::make({}, &why);
-  if (!broker) {
-    if (servers_required()) FAIL() << why;
-    GTEST_SKIP() << why;
-  }
+  BODYREC_OWN_MOSQUITTO(broker, MosquittoServer::Options{});
   TempDir dir;
   const std::string spool = (dir / "door.spool").string(), gallery = (dir / "g.db").string();
   broker->stop();

@@ -156,12 +156,20 @@ bool servers_required();
 
 // In a gtest test body: `BODYREC_REQUIRE_POSTGRES(pg);` declares PostgresServer* pg, or skips the test
 // naming what is missing (fails under BODYREC_REQUIRE_SERVERS=1). Likewise BODYREC_REQUIRE_MOSQUITTO.
-#define BODYREC_REQUIRE_SERVER(var, type)                                               \
-  std::string var##_why;                                                                \
-  type* var = type::shared(&var##_why);                                                 \
+// `BODYREC_OWN_MOSQUITTO(broker, options);` declares std::unique_ptr<MosquittoServer> broker, a broker of
+// the test's own (it may stop and start it), or skips / fails likewise.
+#define BODYREC_SKIP_WITHOUT_SERVER(var)                                                \
   if (!var) {                                                                           \
     if (::bodyrec::testing::servers_required()) FAIL() << var##_why;                    \
     GTEST_SKIP() << var##_why;                                                          \
   }
+#define BODYREC_REQUIRE_SERVER(var, type)                                               \
+  std::string var##_why;                                                                \
+  type* var = type::shared(&var##_why);                                                 \
+  BODYREC_SKIP_WITHOUT_SERVER(var)
+#define BODYREC_OWN_MOSQUITTO(var, options)                                             \
+  std::string var##_why;                                                                \
+  auto var = ::bodyrec::testing::MosquittoServer::make(options, &var##_why);            \
+  BODYREC_SKIP_WITHOUT_SERVER(var)
 #define BODYREC_REQUIRE_POSTGRES(var) BODYREC_REQUIRE_SERVER(var, ::bodyrec::testing::PostgresServer)
 #define BODYREC_REQUIRE_MOSQUITTO(var) BODYREC_REQUIRE_SERVER(var, ::bodyrec::testing::MosquittoServer)

@@ -64,12 +64,7 @@ TEST(EventPublisherServer, EventsArriveWithQos1InOrder) {
 // Issue 47: the broker stops in the middle of a run and comes back; every event arrives, in order, and
 // after dropping repeats by event_id none twice.
 TEST(EventPublisherServer, ABrokerOutageInTheMiddleLosesNothingAndKeepsTheOrder) {
-  std::string why;
-  auto broker = MosquittoServer::make({}, &why);
-  if (!broker) {
-    if (bodyrec::testing::servers_required()) FAIL() << why;
-    GTEST_SKIP() << why;
-  }
+  BODYREC_OWN_MOSQUITTO(broker, MosquittoServer::Options{});
   bodyrec::testing::TempDir dir;
   MqttSubscriber sub(broker->port(), "outage/#", "sub-outage");
   ASSERT_TRUE(sub.subscribed(std::chrono::seconds(20)));
@@ -121,14 +116,9 @@ TEST(EventPublisherServer, CredentialsFromTheFileAreUsedAndWrongOnesDeliverNothi
   ASSERT_EQ(bodyrec::testing::run_program({"/usr/bin/mosquitto_passwd", "-c", "-b", passwords, "door", "s3cret"}, "",
                                           (dir / "passwd.log").string()),
             0);
-  std::string why;
   MosquittoServer::Options options;
   options.password_file = passwords;
-  auto broker = MosquittoServer::make(options, &why);
-  if (!broker) {
-    if (bodyrec::testing::servers_required()) FAIL() << why;
-    GTEST_SKIP() << why;
-  }
+  BODYREC_OWN_MOSQUITTO(broker, options);
   EventPublisherOptions o = options_for(*broker, dir, "auth");
   o.credentials = MqttCredentials{"door", "wrong"};
   o.drain_seconds = 3;
@@ -163,16 +153,11 @@ TEST(EventPublisherServer, TlsDeliversOnlyToABrokerTheCaVouchesFor) {
       {"/usr/bin/openssl", "x509", "-req", "-in", path("server.csr"), "-CA", path("ca.pem"), "-CAkey", path("ca.key"),
        "-CAcreateserial", "-out", path("server.pem"), "-days", "2", "-extfile", path("san.ext")}};
   for (const auto& step : steps) ASSERT_EQ(bodyrec::testing::run_program(step, "", log), 0) << bodyrec::testing::read_text(log);
-  std::string why;
   MosquittoServer::Options options;
   options.tls_cafile = path("ca.pem");
   options.tls_certfile = path("server.pem");
   options.tls_keyfile = path("server.key");
-  auto broker = MosquittoServer::make(options, &why);
-  if (!broker) {
-    if (bodyrec::testing::servers_required()) FAIL() << why;
-    GTEST_SKIP() << why;
-  }
+  BODYREC_OWN_MOSQUITTO(broker, options);
   EventPublisherOptions o;
   o.target = parse_mqtt_uri("mqtts://127.0.0.1:" + std::to_string(broker->port()) + "/tls");
   o.spool = path("events.spool");
