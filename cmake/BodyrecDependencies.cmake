@@ -29,6 +29,8 @@ endforeach()
 
 bodyrec_find_package(dlib REQUIRED)
 bodyrec_find_package(SQLite3 REQUIRED)
+# A site's shared gallery on PostgreSQL (libpq-dev).
+bodyrec_find_package(PostgreSQL REQUIRED)
 bodyrec_find_package(nlohmann_json 3 REQUIRED)
 bodyrec_find_package(pugixml REQUIRED)
 bodyrec_find_package(Threads REQUIRED)
@@ -42,3 +44,13 @@ find_library(BODYREC_LZF_LIBRARY lzf REQUIRED)
 # (omp.h needs no -fopenmp), so only its library is linked.
 find_path(BODYREC_DNNL_INCLUDE_DIR oneapi/dnnl/dnnl.hpp REQUIRED)
 find_library(BODYREC_DNNL_LIBRARY dnnl REQUIRED)
+# Events over MQTT (libmosquitto-dev; no CMake package, found by hand).
+if(NOT TARGET bodyrec_mosquitto::mosquitto)
+  find_path(BODYREC_MOSQUITTO_INCLUDE_DIR mosquitto.h REQUIRED)
+  find_library(BODYREC_MOSQUITTO_LIBRARY mosquitto REQUIRED)
+  add_library(bodyrec_mosquitto::mosquitto SHARED IMPORTED)
+  set_target_properties(bodyrec_mosquitto::mosquitto PROPERTIES
+    IMPORTED_LOCATION ${BODYREC_MOSQUITTO_LIBRARY}
+    INTERFACE_INCLUDE_DIRECTORIES ${BODYREC_MOSQUITTO_INCLUDE_DIR}
+    INTERFACE_SYSTEM_INCLUDE_DIRECTORIES ${BODYREC_MOSQUITTO_INCLUDE_DIR})
+endif()

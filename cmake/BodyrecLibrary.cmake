@@ -34,16 +34,28 @@ function(bodyrec_library area)
   endif()
 endfunction()
 
-# The tests beside an area's code: <area>_test (label unit) from *_test.cc and <area>_data_test (label data,
-# needs ../shared/datasets) from *_data_test.cc, each linked to the area's library only.
+# The tests beside an area's code: <area>_test (label unit) from *_test.cc, <area>_data_test (label data,
+# needs ../shared/datasets) from *_data_test.cc and <area>_server_test (label server, private PostgreSQL and
+# Mosquitto servers, tests/support/server_fixtures.h) from *_server_test.cc, each linked to the area's
+# library only. *_suite_test.cc are parameterised suites: they run in the unit program (SQLite) and again in
+# the server program (PostgreSQL), which instantiates them.
 function(bodyrec_area_tests area)
   file(GLOB unit CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
   file(GLOB data CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_data_test.cc)
-  if(data)
-    list(REMOVE_ITEM unit ${data})
+  file(GLOB server CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_server_test.cc)
+  file(GLOB suites CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_suite_test.cc)
+  if(data OR server)
+    list(REMOVE_ITEM unit ${data} ${server})
   endif()
   bodyrec_test_exe(${area}_test unit bodyrec_${area} ${unit})
   bodyrec_test_exe(${area}_data_test data bodyrec_${area} ${data})
+  if(server)
+    bodyrec_test_exe(${area}_server_test server bodyrec_${area} ${server} ${suites})
+    target_link_libraries(${area}_server_test PRIVATE bodyrec_test_servers)
+  endif()
+  if(suites)
+    target_link_libraries(${area}_test PRIVATE bodyrec_test_servers)
+  endif()
   if(TARGET ${area}_test)
     set_property(GLOBAL APPEND PROPERTY BODYREC_AREA_TESTS ${area}_test)
   endif()
@@ -70,6 +82,12 @@ function(bodyrec_test_exe name label library)
   bodyrec_warnings(${name})
   if(library STREQUAL bodyrec_all)
     add_dependencies(${name} bodyrec)  # the programs under tests/ run the command line; area tests do not
+  endif()
+  # A program on real servers is one ctest test, so its shared PostgreSQL and Mosquitto start once.
+  if(label STREQUAL "server")
+    add_test(NAME ${name} COMMAND ${name})
+    set_tests_properties(${name} PROPERTIES LABELS "${label}" TIMEOUT ${BODYREC_TEST_TIMEOUT})
+    return()
   endif()
   set(excluded "")
   foreach(suite ${${name}_ONE_PROCESS})

@@ -6,7 +6,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
 #include "bodyrec/core/error.h"
+#include "bodyrec/events/event_spool.h"
+#include "bodyrec/events/mqtt_target.h"
 #include "bodyrec/groups/walking_scene.h"
 #include "bodyrec/io/ground_plane.h"
 #include "bodyrec/io/ground_truth.h"
@@ -128,6 +136,39 @@ int fuzz_groups(const uint8_t* data, size_t size) {
   });
 }
 
+namespace {
+
+// A private scratch file for the parsers that read files: its path, removed with its side files.
+struct ScratchFile {
+  std::string path;
+  explicit ScratchFile(const std::string& name, const uint8_t* data, size_t size) {
+    path = (std::filesystem::temp_directory_path() / ("bodyrec-fuzz-" + std::to_string(::getpid()) + "-" + name)).string();
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    ::chmod(path.c_str(), 0600);
+  }
+  ~ScratchFile() {
+    for (const char* suffix : {"", ".sent", ".tmp", ".sent.tmp"}) std::remove((path + suffix).c_str());
+  }
+};
+
+}  // namespace
+
+int fuzz_event_spool(const uint8_t* data, size_t size) {
+  ScratchFile file("spool", data, size);
+  return typed_errors_only([&] {
+    EventSpool spool(file.path, 50);
+    for (int i = 0; i < 3 && !spool.empty(); ++i) spool.pop();
+    spool.push({"t/a/reid", "{}"});
+  });
+}
+
+int fuzz_mqtt_uri(const uint8_t* data, size_t size) {
+  const std::string text = text_of(data, size);
+  typed_errors_only([&] { parse_mqtt_uri(text.substr(0, text.find('\n'))); });
+  ScratchFile file("credentials", data, size);
+  return typed_errors_only([&] { read_mqtt_credentials(file.path); });
+}
+
 const std::vector<NamedTarget>& all_targets() {
   static const std::vector<NamedTarget> targets = {
       {"cvml", fuzz_cvml},
@@ -142,6 +183,8 @@ const std::vector<NamedTarget>& all_targets() {
       {"recording_bodies", fuzz_recording_bodies},
       {"obsmat", fuzz_obsmat},
       {"groups", fuzz_groups},
+      {"event_spool", fuzz_event_spool},
+      {"mqtt_uri", fuzz_mqtt_uri},
   };
   return targets;
 }

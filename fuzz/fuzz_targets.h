@@ -25,6 +25,8 @@ int fuzz_recording_meta(const uint8_t* data, size_t size);    // recording meta.
 int fuzz_recording_bodies(const uint8_t* data, size_t size);  // recording bodies/*.json and truth/*.json
 int fuzz_obsmat(const uint8_t* data, size_t size);            // EWAP obsmat.txt (+ frame period)
 int fuzz_groups(const uint8_t* data, size_t size);            // EWAP groups.txt
+int fuzz_event_spool(const uint8_t* data, size_t size);       // the --events spool file (events/event_spool.h)
+int fuzz_mqtt_uri(const uint8_t* data, size_t size);          // --events URI (one line) and credentials file
 
 struct NamedTarget {
   const char* name;  // folder name under fuzz/corpus and fuzz/regressions

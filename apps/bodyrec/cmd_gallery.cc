@@ -1,6 +1,7 @@
 // `bodyrec gallery`: inspect and manage the persistent re-identification gallery (issue 6/7): list users,
-// show one, export one (right of access), forget one, purge all, prune by retention time. Never
-// creates a gallery: a missing file is an input error.
+// show one, export one (right of access), forget one, purge all, prune by retention time; the same on an
+// SQLite file and on a PostgreSQL database (issue 47). Only `init` creates a gallery: elsewhere a missing
+// file or an empty database is an input error.
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
@@ -20,9 +21,10 @@ struct GalleryCommand {
   std::string user, dir, unseen_for;
   bool json = false, yes = false;
 
-  Gallery open(bool read_only) const {
+  Gallery open(bool read_only, bool create = false) const {
     GalleryOptions o;
     o.read_only = read_only;
+    o.create = create;
     return Gallery(gallery.path, o);
   }
 };
@@ -33,14 +35,21 @@ std::string erased_summary(const EraseReport& r) {
 }
 
 nlohmann::json erase_json(const EraseReport& r) {
-  return {{"users", r.users},   {"scans", r.scans},   {"images", r.images},
-          {"masks", r.masks},   {"events", r.events}, {"checkpointed", r.checkpointed}};
+  return {{"users", r.users},   {"scans", r.scans},   {"images", r.images},         {"masks", r.masks},
+          {"events", r.events}, {"scrubbed", r.scrubbed}, {"checkpointed", r.checkpointed}};
 }
 
-void note_checkpoint(const EraseReport& r) {
-  if (!r.checkpointed)
-    std::printf("note: another process has the gallery open; the erased pages leave the -wal file at its "
-                "next checkpoint\n");
+// "vacuumed" when the database was rewritten without the erased rows (gallery.h).
+const char* vacuumed(const EraseReport& r) { return r.scrubbed ? "vacuumed" : "not vacuumed"; }
+
+void note_scrub(const EraseReport& r) {
+  if (!r.note.empty()) std::printf("note: %s\n", r.note.c_str());
+}
+
+void init(const GalleryCommand& c) {
+  Gallery g = c.open(false, true);
+  std::printf("%s: gallery schema version %d, %d users\n", c.gallery.path.c_str(), kGallerySchemaVersion,
+              g.user_count());
 }
 
 void list(const GalleryCommand& c) {
@@ -87,6 +96,7 @@ void show(const GalleryCommand& c) {
     if (e.score) line += "  score " + nlohmann::json(*e.score).dump();
     if (e.track) line += "  track " + std::to_string(*e.track);
     if (!e.source.empty()) line += "  source " + e.source;
+    if (!e.sensor.empty()) line += "  sensor " + e.sensor;
     std::printf("%s\n", line.c_str());
     j["events"].push_back(event_to_json(e));
   }
@@ -110,9 +120,9 @@ void forget(const GalleryCommand& c) {
   Gallery g = c.open(false);
   const UserId id = g.resolve_user(c.user);
   const EraseReport r = g.forget(id);
-  std::printf("forgot user %lld: erased %s; %s vacuumed\n", static_cast<long long>(id), erased_summary(r).c_str(),
-              c.gallery.path.c_str());
-  note_checkpoint(r);
+  std::printf("forgot user %lld: erased %s; %s %s\n", static_cast<long long>(id), erased_summary(r).c_str(),
+              c.gallery.path.c_str(), vacuumed(r));
+  note_scrub(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
 
@@ -122,9 +132,9 @@ void purge(const GalleryCommand& c) {
     throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.gallery.path +
                      "; run it again with --yes");
   const EraseReport r = g.purge();
-  std::printf("purged %s: erased %zu users, %s; vacuumed\n", c.gallery.path.c_str(), r.users.size(),
-              erased_summary(r).c_str());
-  note_checkpoint(r);
+  std::printf("purged %s: erased %zu users, %s; %s\n", c.gallery.path.c_str(), r.users.size(),
+              erased_summary(r).c_str(), vacuumed(r));
+  note_scrub(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
 
@@ -137,13 +147,13 @@ void prune(const GalleryCommand& c) {
   for (UserId u : r.users) ids += (ids.empty() ? "" : " ") + std::to_string(u);
   std::printf("pruned %zu users not seen since %s%s%s: erased %s\n", r.users.size(),
               format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
-  note_checkpoint(r);
+  note_scrub(r);
   if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
 }
 
 void add(CLI::App& app) {
   auto c = std::make_shared<GalleryCommand>();
-  CLI::App* gallery = app.add_subcommand("gallery", "Inspect and manage the re-identification gallery (never creates one)");
+  CLI::App* gallery = app.add_subcommand("gallery", "Inspect and manage the re-identification gallery (SQLite file or PostgreSQL)");
   gallery->require_subcommand(1);
   add_gallery_path_option(*gallery, c->gallery);
   gallery->footer(
@@ -151,11 +161,16 @@ void add(CLI::App& app) {
       "history; see README \"What is stored where\".\n"
       "Examples: bodyrec gallery list\n"
       "          bodyrec gallery --gallery lab.db show 3 --json\n"
+      "          bodyrec gallery --gallery postgresql://bodyrec_admin@db.site/bodyrec_site init\n"
       "          bodyrec gallery export 3 user3/\n"
       "          bodyrec gallery forget 3\n"
       "          bodyrec gallery prune --unseen-for 30d");
 
-  CLI::App* sub = gallery->add_subcommand("list", "Users with the views they have, scan counts, first/last seen");
+  CLI::App* sub = gallery->add_subcommand(
+      "init", "Create the gallery: a new SQLite file, or the tables in an empty PostgreSQL database (docs/postgresql.md)");
+  sub->callback([c] { init(*c); });
+
+  sub = gallery->add_subcommand("list", "Users with the views they have, scan counts, first/last seen");
   sub->add_flag("--json", c->json, "End stdout with one JSON object {gallery, users: [{id, label, views, ...}]}");
   sub->callback([c] { list(*c); });
 
@@ -171,7 +186,7 @@ void add(CLI::App& app) {
   sub->footer("Example: bodyrec gallery export 3 user3/  (writes F-image.png, F-mask.png, ..., user.json)");
   sub->callback([c] { export_command(*c); });
 
-  sub = gallery->add_subcommand("forget", "Erase every image, feature and event of one user (file vacuumed)");
+  sub = gallery->add_subcommand("forget", "Erase every image, feature and event of one user (database vacuumed)");
   sub->add_option("USER", c->user, "User id or label")->required();
   sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
   sub->callback([c] { forget(*c); });

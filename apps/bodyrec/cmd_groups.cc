@@ -1,13 +1,15 @@
 // `bodyrec groups`: the group-leader tracker (thesis Ch4) on a video or camera: people, tracks, motion,
 // groups and roles (leader / member / non-member), leader tracking with loss and re-acquisition, and the
-// leader's direction.
+// leader's direction. With --events, leader found/lost and group formed/dissolved go over MQTT (issue 47).
 #include <cstdio>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/groups/group_events.h"
 #include "command.h"
 #include "common_options.h"
+#include "event_options.h"
 #include "groups_job.h"
 
 namespace bodyrec::cli {
@@ -18,6 +20,7 @@ struct GroupsCommand {
   OutputOptions outputs;
   DetectorOptions detector;
   GroupsJobOptions groups;
+  EventCliOptions event_options;
   bool json = false;
 
   void run() const {
@@ -25,10 +28,30 @@ struct GroupsCommand {
     groups.resolved();
     auto frames = open_source(source);
     auto people = make_detector(detector, frames->fps().has_value());
+    RunEvents events = open_events(event_options, "groups");
+    GroupFrame previous;
+    int last_frame = -1;
+    double last_time = 0;
+    const auto publish = [&](const GroupFrame& now, int frame, double time, bool end) {
+      for (const GroupEvent& e : group_events(previous, now)) {
+        nlohmann::json payload = {{"kind", group_event_name(e.kind)}, {"group", e.group}, {"members", e.members},
+                                  {"frame", frame},                    {"time", time},
+                                  {"source", source.path.empty() ? "camera " + std::to_string(source.camera) : source.path}};
+        if (e.leader) payload["leader"] = *e.leader;
+        if (e.previous) payload["previous"] = *e.previous;
+        if (!e.reason.empty()) payload["reason"] = e.reason;
+        if (end) payload["end"] = true;
+        events.publish(std::move(payload));
+      }
+      previous = now;
+    };
     std::map<std::string, int> role_boxes;
     int lost_events = 0, reacquired = 0, handovers = 0, max_groups = 0;
     const auto stats = run_groups(*frames, *people, groups, outputs, !json || !outputs.jsonl.empty(),
-                                  [&](const Frame&, const GroupFrame& g) {
+                                  [&](const Frame& frame, const GroupFrame& g) {
+                                    last_frame = frame.index;
+                                    last_time = groups.fps > 0 ? frame.index / groups.fps : frame.time_s;
+                                    if (events.publisher) publish(g, last_frame, last_time, false);
                                     for (const auto& p : g.people) role_boxes[to_string(p.role)]++;
                                     for (const auto& l : g.leaders) {
                                       lost_events += !l.status.lost_reason.empty();
@@ -37,6 +60,8 @@ struct GroupsCommand {
                                     }
                                     max_groups = std::max(max_groups, static_cast<int>(g.leaders.size()));
                                   });
+    if (events.publisher) publish(GroupFrame{}, last_frame, last_time, true);  // the run ends every group
+    const nlohmann::json delivery = events.finish();
     const double n = std::max(1, stats.frames);
     if (!outputs.quiet)
       std::cerr << "bodyrec groups: " << stats.frames << " frames, " << stats.total_ms() / n
@@ -55,7 +80,9 @@ struct GroupsCommand {
           {"max_groups", max_groups},
           {"leader_lost", lost_events},
           {"leader_reacquired", reacquired},
-          {"leader_handovers", handovers}};
+          {"leader_handovers", handovers},
+          {"sensor", events.sensor},
+          {"events", delivery}};
       std::printf("%s\n", summary.dump().c_str());
     }
   }
@@ -79,6 +106,8 @@ void add(CLI::App& app) {
   add_output_options(*sub, command->outputs);
   add_detector_options(*sub, command->detector);
   add_groups_options(*sub, command->groups);
+  add_sensor_option(*sub, command->event_options);
+  add_event_options(*sub, command->event_options);
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON summary (frames, ms_per_frame and per stage, role counts, leader "
                 "losses); per-frame rows then go only to --jsonl");

@@ -1,12 +1,14 @@
 // `bodyrec reid REC [--gallery gallery.db]`: online re-identification of every body of an RGB-D
 // recording against a persistent gallery (thesis Ch6, several people at once): enrolments,
-// recognitions, added views and departures as events, and each body's user per frame.
+// recognitions, added views and departures as events, and each body's user per frame. The gallery may be
+// a site's PostgreSQL database, and the events go over MQTT with --events (issue 47).
 #include <cstdio>
 #include <map>
 #include <memory>
 
 #include "bodyrec/io/sinks.h"
 #include "command.h"
+#include "event_options.h"
 #include "reid_output.h"
 
 namespace bodyrec::cli {
@@ -15,19 +17,23 @@ namespace {
 struct ReidCommand {
   std::string input, jsonl;
   ReidCliOptions options;
+  EventCliOptions event_options;
   bool json = false, quiet = false;
 
   void run() const {
     ReidInput in = open_reid_input(input, options);  // before any file is created
+    RunEvents events = open_events(event_options, "reid");
+    ReidCliOptions o = options;
+    o.sensor = events.sensor;
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
-    auto gallery = open_reid_gallery(options, options.gallery.path);
+    auto gallery = open_reid_gallery(o, o.gallery.path);
     GalleryReidStore store(*gallery, *in.matcher, {input, std::nullopt});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
-    const int frames = run_reid(in, options, store, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, o, store, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -36,6 +42,12 @@ struct ReidCommand {
       }
       for (const ReidEvent& e : f.step.events) {
         ++counts[reid_event_name(e.kind)];
+        nlohmann::json payload = reid_event_json(e);
+        payload["frame"] = f.frame.index >= 0 ? f.frame.index : last_frame + 1;
+        payload["time"] = f.frame.index >= 0 ? f.frame.time_s : last_time;
+        if (f.frame.index < 0) payload["end"] = true;
+        payload["source"] = in.path;
+        events.publish(std::move(payload));
         if (!text) continue;
         std::printf("frame %d track %llu %s user %lld", f.frame.index >= 0 ? f.frame.index : last_frame,
                     static_cast<unsigned long long>(e.track), reid_event_name(e.kind), static_cast<long long>(e.user));
@@ -45,6 +57,7 @@ struct ReidCommand {
       }
       if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
     });
+    const nlohmann::json delivery = events.finish();
     const int users = gallery->user_count();
     const double per_frame = frames ? ms / frames : 0.0, per_body = bodies ? ms / bodies : 0.0;
     if (text)
@@ -63,7 +76,9 @@ struct ReidCommand {
                                           {"ms_per_frame", per_frame},
                                           {"ms_per_body", per_body},
                                           {"matcher", options.matcher},
-                                          {"match_views", to_string(match_views(options))}})
+                                          {"match_views", to_string(match_views(options))},
+                                          {"sensor", events.sensor},
+                                          {"events", delivery}})
                               .dump()
                               .c_str());
   }
@@ -77,16 +92,22 @@ void add(CLI::App& app) {
                                          "index when it has them")
       ->required();
   add_reid_options(*sub, command->options);
+  add_sensor_option(*sub, command->event_options);
+  add_event_options(*sub, command->event_options);
   sub->add_option("--jsonl", command->jsonl,
                   "Per frame: each body's track, user (null while undecided), view, box; the events; ms per stage. "
                   "'-' = stdout");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (frames, body_frames, enrolled, recognised, view_added, left, users, "
-                "ms_per_frame, ms_per_body)");
+                "ms_per_frame, ms_per_body, sensor, events: {delivered, pending, dropped, recovered, spool, topic} "
+                "with --events)");
   sub->add_flag("-q,--quiet", command->quiet, "No per-event lines");
   sub->footer("Example: bodyrec synth --scenario reenter --people 4 --frames 300 --out rec -q && "
               "bodyrec reid rec --gallery gallery.db --jsonl reid.jsonl && bodyrec report reid.jsonl --gallery "
-              "gallery.db --out report.html");
+              "gallery.db --out report.html\n"
+              "Several sensors: bodyrec reid rec --gallery postgresql://bodyrec_sensor@db.site/bodyrec_site "
+              "--sensor-id door --events mqtt://broker.site/site --events-credentials door.cred "
+              "(README \"Several sensors\")");
   sub->callback([command] { command->run(); });
 }
 

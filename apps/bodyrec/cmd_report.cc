@@ -96,7 +96,9 @@ void add(CLI::App& app) {
   sub->add_option("--eval", command->evals,
                   "File holding the --json output of an eval command (kind from its keys); repeatable. Per-person "
                   "landmark errors (eval landmarks --per-person) give a histogram");
-  sub->add_option("--gallery", command->gallery, "Gallery database (read-only): a row per user with their 8 views, first/last seen, events");
+  sub->add_option("--gallery", command->gallery,
+                  "Gallery (read-only; SQLite file or postgresql:// URI): a row per user with their 8 views, "
+                  "first/last seen, events");
   sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(CLI::Range(0, 12));
   sub->add_flag("--no-images", command->no_images, "Leave every image of a person out of the page");
   sub->add_option("--out", command->out, "The HTML file to write")->required();

@@ -6,7 +6,9 @@ namespace bodyrec::cli {
 
 void add_gallery_path_option(CLI::App& sub, GalleryCliOptions& options) {
   sub.add_option("--gallery", options.path,
-                 "Gallery file (SQLite). Default: gallery.db in the working directory");
+                 "Gallery: an SQLite file, or a PostgreSQL database as a libpq URI postgresql://[ROLE@]HOST[:PORT]/DB"
+                 "[?sslmode=verify-full...] (the password comes from PGPASSFILE or ~/.pgpass, never the URI). "
+                 "Default: gallery.db in the working directory");
 }
 
 std::chrono::seconds parse_retention(const std::string& text, const char* option) {

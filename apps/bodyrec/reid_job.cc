@@ -78,6 +78,7 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
   g.create = true;
   g.store_images = !options.no_images;
   g.max_events_per_user = options.max_events_per_user;
+  g.sensor = options.sensor;
   auto gallery = std::make_unique<Gallery>(path, g);
   if (!options.prune_unseen_for.empty())
     gallery->prune_unseen(parse_retention(options.prune_unseen_for, "--prune-unseen-for"));

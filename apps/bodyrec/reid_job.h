@@ -28,6 +28,7 @@ struct ReidCliOptions {
   std::optional<MatchViews> match_views;  // none: near for the thesis's kaze matcher, else all
   std::string prune_unseen_for;  // retention, applied before the run; "" = keep everyone
   int max_events_per_user = GalleryOptions{}.max_events_per_user;  // event history cap; 0 = all
+  std::string sensor;  // recorded with the gallery's events (reid --sensor-id)
   OnlineReidOptions reid;
   int stature_wait = -1;  // --stature-wait; -1: ReidPipelineOptions' default
 };

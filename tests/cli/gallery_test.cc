@@ -186,12 +186,12 @@ TEST(GalleryCli, MissingForeignAndNewerGalleriesAreInputErrors) {
   const std::string newer = make_gallery(dir);
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(newer.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 2", nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 3", nullptr, nullptr, nullptr), SQLITE_OK);
   sqlite3_close(db);
   const RunResult future = run_bodyrec({"gallery", "--gallery", newer, "show", "1"});
   EXPECT_EQ(future.exit_code, 3);
   EXPECT_EQ(future.err, "bodyrec: error: " + newer +
-                            ": gallery schema version 2 is newer than this bodyrec reads (up to 1); use a newer bodyrec\n");
+                            ": gallery schema version 3 is newer than this bodyrec reads (up to 2); use a newer bodyrec\n");
 }
 
 }  // namespace

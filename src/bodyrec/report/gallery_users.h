@@ -15,6 +15,6 @@ namespace bodyrec::report {
 // scan. Opens the file read-only (nothing written, no file created). Throws the store's InputError
 // naming the file when it is missing, not an SQLite database, another application's database or from a
 // newer schema; InputError naming the user and view when a stored image does not decode.
-std::vector<ReportUser> read_gallery_users(const std::string& path, bool images = true);
+std::vector<ReportUser> read_gallery_users(const std::string& path, bool images = true);  // file or postgresql:// URI
 
 }  // namespace bodyrec::report

@@ -1,42 +1,16 @@
-// Opening a gallery: file creation with private permissions, connection settings, schema checks and
-// migration, and the feature cache. Writes are in gallery_write.cc, reads in gallery_read.cc.
+// Opening a gallery: the backend for the location (file or postgresql:// URI), schema checks and
+// migration, the feature cache and transactions. Writes are in gallery_write.cc, reads in gallery_read.cc.
 #include "bodyrec/store/gallery.h"
 
-#include <fcntl.h>
-#include <sqlite3.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/store/feature_blob.h"
+#include "bodyrec/store/gallery_backend.h"
+#include "bodyrec/store/postgres.h"
 #include "bodyrec/store/schema.h"
-#include "bodyrec/store/sqlite.h"
 
 namespace bodyrec {
-
-namespace {
-
-// Creates an empty file readable and writable by its owner only. The umask can only remove bits from
-// open()'s mode, so fchmod sets 0600 exactly. An empty file is a valid empty SQLite database; EEXIST
-// (another process created it first) is fine.
-void create_private_file(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-  if (fd < 0) {
-    if (errno == EEXIST) return;
-    throw InputError(path + ": cannot create gallery: " + std::strerror(errno));
-  }
-  const int rc = ::fchmod(fd, 0600);
-  const int saved = errno;
-  ::close(fd);
-  if (rc != 0) throw ProcessingError(path + ": cannot set mode 0600: " + std::strerror(saved));
-}
-
-}  // namespace
 
 void GalleryOptions::check() const {
   if (create && read_only) throw UsageError("gallery: create and read-only cannot be combined");
@@ -46,87 +20,82 @@ void GalleryOptions::check() const {
 
 Gallery::Gallery(const std::string& path, const GalleryOptions& options) : path_(path), options_(options) {
   options_.check();
-  std::error_code ec;
-  const bool exists = std::filesystem::exists(path, ec);
-  if (!exists) {
-    if (!options_.create) throw InputError(path + ": gallery not found");
-    create_private_file(path);
-  } else if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(path + ": is a directory, not a gallery file");
-  }
-  // A read-only gallery is still opened read-write when the file allows it, with query_only set: only a
-  // writable connection can checkpoint and remove the -wal/-shm files when it closes.
-  const bool writable = ::access(path.c_str(), W_OK) == 0;
-  db_ = std::make_unique<sql::Database>(
-      path, options_.read_only && !writable ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE);
-  if (options_.read_only) db_->exec("PRAGMA query_only = ON");
-  configure_connection();
+  backend_ = sql::is_postgres_uri(path) ? store::make_postgres_backend(path, options_)
+                                        : store::make_sqlite_backend(path, options_);
+  db_ = &backend_->connection();
   migrate();
   load_cache();
 }
 
 Gallery::~Gallery() = default;
 
-void Gallery::configure_connection() {
-  sqlite3_busy_timeout(db_->handle(), options_.busy_timeout_ms);
-  // The first read of the header: a file that is not SQLite fails here with SQLITE_NOTADB (InputError).
-  db_->query_int("PRAGMA user_version");
-  db_->exec("PRAGMA foreign_keys = ON");
-  // Deleted rows (forget, purge, replaced scans) are overwritten with zeros, not just unlinked.
-  db_->exec("PRAGMA secure_delete = ON");
-  if (options_.read_only) return;
-  db_->exec("PRAGMA journal_mode = WAL");
-  db_->exec(options_.sync_full ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL");
-}
-
 void Gallery::migrate() {
-  auto version = static_cast<int>(db_->query_int("PRAGMA user_version"));
-  const int64_t app = db_->query_int("PRAGMA application_id");
-  const int64_t objects = db_->query_int("SELECT count(*) FROM sqlite_master");
-  const bool empty = version == 0 && app == 0 && objects == 0;
-  if (!empty && app != store::kGalleryApplicationId)
-    throw InputError(path_ + ": an SQLite database, but not a bodyrec gallery");
-  if (version > kGallerySchemaVersion)
-    throw InputError(path_ + ": gallery schema version " + std::to_string(version) +
+  auto stamp = backend_->stamp();
+  if (!stamp.empty && !stamp.ours)
+    throw InputError(path_ + ": " + backend_->database_kind() + ", but not a bodyrec gallery");
+  if (stamp.version > kGallerySchemaVersion)
+    throw InputError(path_ + ": gallery schema version " + std::to_string(stamp.version) +
                      " is newer than this bodyrec reads (up to " + std::to_string(kGallerySchemaVersion) +
                      "); use a newer bodyrec");
-  if (version == kGallerySchemaVersion) return;
-  if (empty && !options_.create) throw InputError(path_ + ": empty file, not a bodyrec gallery");
+  if (stamp.version == kGallerySchemaVersion) return;
+  if (stamp.empty && !options_.create) throw InputError(path_ + ": " + backend_->empty_kind() + ", not a bodyrec gallery");
   if (options_.read_only)
-    throw InputError(path_ + ": gallery schema version " + std::to_string(version) + " needs an upgrade to " +
-                     std::to_string(kGallerySchemaVersion) + "; open it once for writing");
-  sql::Transaction upgrade(*db_);
-  // Another process may have upgraded it while this one waited for the write lock.
-  version = static_cast<int>(db_->query_int("PRAGMA user_version"));
-  if (version < kGallerySchemaVersion) store::upgrade_schema(*db_, version);
-  upgrade.commit();
+    throw InputError(path_ + ": gallery schema version " + std::to_string(stamp.version) + " needs an upgrade to " +
+                     std::to_string(kGallerySchemaVersion) + "; open it once for writing (bodyrec gallery init)");
+  backend_->begin_upgrade();
+  try {
+    // Another process may have upgraded it while this one waited for the lock.
+    stamp = backend_->stamp();
+    for (int v = stamp.version; v < kGallerySchemaVersion; ++v) {
+      db_->exec(store::schema_step(db_->dialect(), v));
+      backend_->set_version(v + 1);
+    }
+    backend_->commit();
+  } catch (...) {
+    db_->rollback_quietly();
+    throw;
+  }
 }
 
 void Gallery::load_cache() {
   for (auto& view : cache_) view.clear();
+  // The counter first: a write committed during the load makes the next refresh() load again.
+  backend_->may_have_changed();
+  scan_changes_ = read_scan_changes();
   sql::Statement s(*db_,
-                   "SELECT user, view, features, descriptor, descriptor_version, quality FROM scans "
-                   "ORDER BY user, view");
+                   "SELECT \"user\", view, features, descriptor, descriptor_version, quality FROM scans "
+                   "ORDER BY \"user\", view");
   while (s.step()) {
     GalleryEntry e;
     e.user = s.column_int(0);
     e.view = static_cast<View>(s.column_int(1));
-    e.features = store::decode_features(s.column_blob_data(2), static_cast<size_t>(s.column_bytes(2)),
+    e.features = store::decode_features(s.column_blob_data(2), s.column_bytes(2),
                                         path_ + ": user " + std::to_string(e.user));
     e.descriptor = s.column_text(3);
     e.descriptor_version = static_cast<int>(s.column_int(4));
     e.quality = s.column_double(5);
     cache_[static_cast<int>(e.view)].push_back(std::move(e));
   }
-  data_version_ = db_->query_int("PRAGMA data_version");
   cache_dirty_ = false;
 }
 
+int64_t Gallery::read_scan_changes() { return db_->query_int("SELECT scan_changes FROM gallery_state"); }
+
 bool Gallery::refresh() {
-  const int64_t version = db_->query_int("PRAGMA data_version");
-  if (version == data_version_ && !cache_dirty_) return false;
+  if (!cache_dirty_ && (!backend_->may_have_changed() || read_scan_changes() == scan_changes_)) return false;
   load_cache();
   return true;
+}
+
+void Gallery::scans_changed() {
+  if (txn_scan_changes_) return;
+  sql::Statement s(*db_, "UPDATE gallery_state SET scan_changes = scan_changes + 1 RETURNING scan_changes");
+  if (!s.step()) throw ProcessingError(path_ + ": gallery_state has no row");
+  txn_scan_changes_ = s.column_int(0);
+  s.reset();
+  // Writers take turns (begin_write), so the count moved by this transaction alone when it is one more
+  // than the cache's: the cache, which takes this transaction's writes, is then current after the commit.
+  txn_cache_was_current_ = *txn_scan_changes_ == scan_changes_ + 1;
 }
 
 void Gallery::cache_put(const GalleryEntry& entry) {
@@ -151,12 +120,15 @@ void Gallery::cache_erase(UserId user) {
                view.end());
 }
 
+std::string Gallery::integrity_check() { return backend_->integrity_check(); }
+
 void Gallery::begin() {
   if (options_.read_only) throw ProcessingError(path_ + ": gallery opened read-only, cannot write");
   if (depth_++ == 0) {
     aborted_ = false;
+    txn_scan_changes_.reset();
     try {
-      db_->exec("BEGIN IMMEDIATE");
+      backend_->begin_write();
     } catch (...) {
       depth_ = 0;
       throw;
@@ -171,10 +143,15 @@ void Gallery::commit() {
     throw ProcessingError(path_ + ": transaction rolled back after a failed write inside it");
   }
   try {
-    db_->exec("COMMIT");
+    backend_->commit();
   } catch (...) {
     rollback_now();
     throw;
+  }
+  if (txn_scan_changes_) {
+    if (txn_cache_was_current_) scan_changes_ = *txn_scan_changes_;
+    else cache_dirty_ = true;  // another process changed scans before: refresh() loads them
+    txn_scan_changes_.reset();
   }
 }
 
@@ -187,9 +164,14 @@ void Gallery::rollback() {
 }
 
 void Gallery::rollback_now() {
-  sqlite3_exec(db_->handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-  // The cache took the rolled-back writes; reload it from the file.
-  load_cache();
+  db_->rollback_quietly();
+  // The cache took the rolled-back writes; reload it from the database. The connection may be gone
+  // (PostgreSQL restart): the caller's error says so; a stale cache is marked for the next refresh.
+  try {
+    load_cache();
+  } catch (const Error&) {
+    cache_dirty_ = true;
+  }
 }
 
 }  // namespace bodyrec

@@ -1,16 +1,29 @@
-// The persistent biometric gallery of re-identification (issue 6, thesis Ch6): one SQLite file holding
-// users, at most one partial scan per (user, view) and an event history, plus an in-memory feature
-// cache so matching a probe needs no database round-trip.
+// The persistent biometric gallery of re-identification (issue 6, thesis Ch6): users, at most one
+// partial scan per (user, view) and an event history, plus an in-memory feature cache so matching a
+// probe needs no database round-trip.
 //
-// Crash safety and sharing (issue 7): WAL journal, synchronous=FULL, every write one transaction
-// (BEGIN IMMEDIATE), a busy timeout so two processes on one file wait for each other instead of failing.
+// Two databases behind one class (issue 47): an SQLite file (the embedded default; `path` is a file
+// name) or a PostgreSQL database shared by a site's sensors (`path` is a libpq connection URI,
+// postgresql://...; store/postgres.h). The SQL and the logic are the same for both; what differs is in
+// store/gallery_backend.h. Everything below holds for both unless it names SQLite.
+//
+// Crash safety and sharing (issue 7): every write one transaction that keeps other writers out from its
+// start (SQLite: BEGIN IMMEDIATE; PostgreSQL: a lock on the gallery's counter row), a busy timeout so
+// two processes wait for each other instead of failing. SQLite: WAL journal, synchronous=FULL.
 // FULL rather than NORMAL: in WAL mode NORMAL already survives a killed process, but a power cut could
 // lose the last commits; gallery writes are rare (per enrolment event, not per frame), so the fsync per
 // commit is cheap (bench/gallery_bench.cc) and a robot whose battery dies keeps every reported enrolment.
 //
 // Privacy: a new file is created mode 0600 whatever the umask (SQLite gives its -wal/-shm the same
 // mode); store_images=false keeps features only; forget/purge/prune run with secure_delete, then VACUUM
-// and a truncating WAL checkpoint, so erased images and features leave no bytes in the .db or -wal.
+// and a truncating WAL checkpoint, so erased images and features leave no bytes in the .db or -wal. On
+// PostgreSQL they run VACUUM FULL (the tables' owner only) and CHECKPOINT; docs/postgresql.md says what
+// stays in the WAL and in backups.
+//
+// PostgreSQL connection loss (server restart): the call that meets it throws ProcessingError ("lost the
+// connection to the PostgreSQL server"); every committed write is kept, the open transaction is not.
+// The gallery does not reconnect by itself: a run stops, and a new run carries on from what was
+// committed (docs/postgresql.md).
 #pragma once
 
 #include <array>
@@ -25,11 +38,13 @@
 namespace bodyrec {
 
 namespace sql {
-class Database;
+class Connection;
 }
 
 struct GalleryOptions {
-  bool create = false;       // create the file when missing (else InputError naming it)
+  // SQLite: create the file when missing (else InputError naming it). Both: create the schema in an
+  // empty database (PostgreSQL: the database itself must exist).
+  bool create = false;
   bool read_only = false;    // no writes; the file must exist and have the current schema
   bool store_images = true;  // false: put_scan drops image and mask, keeps features (--no-images)
   int busy_timeout_ms = 10000;  // how long a write waits for another process's transaction
@@ -40,19 +55,29 @@ struct GalleryOptions {
   // `forgotten`/`pruned`); older ones are erased as new ones come, so a file's size is bounded by its
   // users and views however often they come back. 0 keeps every event.
   int max_events_per_user = 1000;
+  // Recorded with every event this object logs whose Event::sensor is empty (reid --sensor-id).
+  std::string sensor;
   void check() const;  // UsageError for create together with read_only, a negative timeout or event cap
 };
 
-// The schema version this build writes (PRAGMA user_version). Older files are migrated on open.
-constexpr int kGallerySchemaVersion = 1;
+// The schema version this build writes (SQLite: PRAGMA user_version; PostgreSQL: bodyrec_gallery).
+// Older galleries are migrated on open. 2: events record their sensor.
+constexpr int kGallerySchemaVersion = 2;
 
-// One Gallery object per thread (it owns one SQLite connection); several processes may share a file.
+namespace store {
+class GalleryBackend;
+}
+
+// One Gallery object per thread (it owns one database connection); several processes may share a
+// gallery.
 class Gallery : public GalleryCache {
  public:
-  // Opens (or creates) the gallery at `path` and loads the feature cache.
+  // Opens (or creates) the gallery at `path` (a file, or a postgresql:// URI) and loads the feature cache.
   // Throws InputError naming the file when it is missing (without create), not an SQLite database,
-  // another application's database, or from a newer schema ("... schema version N, this bodyrec reads
-  // up to 1"). Older schemas are upgraded in one transaction (not in read_only mode: InputError).
+  // another application's database, or from a newer schema ("... schema version N is newer than this
+  // bodyrec reads (up to 2)"); for a URI, also when the server cannot be reached or the database does
+  // not exist; UsageError for a URI that holds a password. Older schemas are upgraded in one transaction
+  // (not in read_only mode: InputError).
   Gallery(const std::string& path, const GalleryOptions& options = {});
   ~Gallery() override;
   Gallery(const Gallery&) = delete;
@@ -78,8 +103,8 @@ class Gallery : public GalleryCache {
                const std::string& source = "");
   void set_label(UserId user, const std::string& label);
 
-  // Erases every scan (image, mask, features), event and the user row itself, then scrubs the file
-  // (secure_delete + VACUUM + WAL checkpoint). A `forgotten` event without a user id records that an
+  // Erases every scan (image, mask, features), event and the user row itself, then scrubs the database
+  // (SQLite: secure_delete + VACUUM + WAL checkpoint; PostgreSQL: VACUUM FULL + CHECKPOINT). A `forgotten` event without a user id records that an
   // erasure happened. InputError when the user does not exist.
   EraseReport forget(UserId user);
   // Erases every user, scan and event; same scrubbing.
@@ -111,8 +136,9 @@ class Gallery : public GalleryCache {
   // candidate's quality against it before calling put_scan, which costs a commit (and an fsync) even
   // when it keeps the stored scan.
   const GalleryEntry* find(UserId user, View view) const override;
-  // Reloads the cache when another connection changed the file (PRAGMA data_version: cheap, no I/O
-  // when nothing changed). Returns true when it reloaded. Call it once per frame or per decision.
+  // Reloads the cache when another connection changed scans (gallery_state.scan_changes; SQLite asks
+  // only after PRAGMA data_version moved, no I/O when nothing changed; PostgreSQL: one query). Others'
+  // events do not reload it. Returns true when it reloaded. Call it once per frame or per decision.
   bool refresh();
 
   std::optional<User> user(UserId id);
@@ -123,11 +149,11 @@ class Gallery : public GalleryCache {
   std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
   int user_count();
 
-  // PRAGMA integrity_check's first line ("ok" when healthy).
+  // SQLite: PRAGMA integrity_check's first line ("ok" when healthy); PostgreSQL: "ok" when the gallery
+  // answers (the server checks its own pages).
   std::string integrity_check();
 
  private:
-  void configure_connection();
   void migrate();
   void load_cache();
   void begin();
@@ -139,12 +165,18 @@ class Gallery : public GalleryCache {
   void touch(UserId user, GalleryTime time);
   void cache_put(const GalleryEntry& entry);
   void cache_erase(UserId user);
+  void scans_changed();  // inside a write: counts a change of scans (once per transaction)
+  int64_t read_scan_changes();
 
   std::string path_;
   GalleryOptions options_;
-  std::unique_ptr<sql::Database> db_;
+  std::unique_ptr<store::GalleryBackend> backend_;
+  sql::Connection* db_ = nullptr;  // backend_'s
   std::array<std::vector<GalleryEntry>, kViewCount> cache_;
-  int64_t data_version_ = 0;
+  int64_t scan_changes_ = 0;      // gallery_state.scan_changes the cache reflects
+  // This transaction's value of scan_changes once it changed scans; whether the cache was current before.
+  std::optional<int64_t> txn_scan_changes_;
+  bool txn_cache_was_current_ = false;
   int depth_ = 0;                 // nesting of transaction()/internal writes
   bool cache_dirty_ = false;
   bool aborted_ = false;          // an inner write failed: the outer transaction must roll back

@@ -56,6 +56,7 @@ nlohmann::json event_to_json(const Event& event) {
   if (event.score) j["score"] = *event.score;
   if (event.track) j["track"] = *event.track;
   if (!event.source.empty()) j["source"] = event.source;
+  if (!event.sensor.empty()) j["sensor"] = event.sensor;
   return j;
 }
 

@@ -15,7 +15,7 @@ nlohmann::json user_to_json(const User& user);
 // {"view", "quality", "image", "mask" (booleans: stored or not), "descriptor", "descriptor_version",
 //  "features": "1x64 32F", "time"}
 nlohmann::json scan_to_json(const StoredScan& scan);
-// {"id", "kind", "time", and when present "user", "view", "score", "track", "source"}
+// {"id", "kind", "time", and when present "user", "view", "score", "track", "source", "sensor"}
 nlohmann::json event_to_json(const Event& event);
 // {"type": "32F", "rows", "cols", "channels", "values": [row-major numbers]}
 nlohmann::json features_to_json(const cv::Mat& features);

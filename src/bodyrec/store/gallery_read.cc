@@ -3,7 +3,7 @@
 #include "bodyrec/core/parse_number.h"
 #include "bodyrec/store/feature_blob.h"
 #include "bodyrec/store/gallery.h"
-#include "bodyrec/store/sqlite.h"
+#include "bodyrec/store/connection.h"
 
 namespace bodyrec {
 
@@ -26,10 +26,10 @@ User read_user(const sql::Statement& s) {
 std::vector<User> Gallery::users() {
   std::vector<User> all;
   {
-    sql::Statement s(*db_, (std::string(kUserColumns) + " ORDER BY id").c_str());
+    sql::Statement s(*db_, std::string(kUserColumns) + " ORDER BY id");
     while (s.step()) all.push_back(read_user(s));
   }
-  sql::Statement views(*db_, "SELECT user, view FROM scans ORDER BY user");
+  sql::Statement views(*db_, "SELECT \"user\", view FROM scans ORDER BY \"user\"");
   size_t i = 0;
   while (views.step()) {
     const UserId user = views.column_int(0);
@@ -43,11 +43,11 @@ std::vector<User> Gallery::users() {
 }
 
 std::optional<User> Gallery::user(UserId id) {
-  sql::Statement s(*db_, (std::string(kUserColumns) + " WHERE id = ?1").c_str());
+  sql::Statement s(*db_, std::string(kUserColumns) + " WHERE id = ?1");
   s.bind(1, static_cast<int64_t>(id));
   if (!s.step()) return std::nullopt;
   User u = read_user(s);
-  sql::Statement views(*db_, "SELECT view FROM scans WHERE user = ?1");
+  sql::Statement views(*db_, "SELECT view FROM scans WHERE \"user\" = ?1");
   views.bind(1, static_cast<int64_t>(id));
   while (views.step()) {
     u.views[static_cast<size_t>(views.column_int(0))] = true;
@@ -77,7 +77,7 @@ UserId Gallery::resolve_user(const std::string& id_or_label) {
 std::vector<StoredScan> Gallery::user_scans(UserId user) {
   sql::Statement s(*db_,
                    "SELECT view, image_png, mask_png, features, descriptor, descriptor_version, quality, time_ms "
-                   "FROM scans WHERE user = ?1 ORDER BY view");
+                   "FROM scans WHERE \"user\" = ?1 ORDER BY view");
   s.bind(1, static_cast<int64_t>(user));
   std::vector<StoredScan> scans;
   while (s.step()) {
@@ -86,7 +86,7 @@ std::vector<StoredScan> Gallery::user_scans(UserId user) {
     scan.view = static_cast<View>(s.column_int(0));
     scan.image_png = s.column_blob(1);
     scan.mask_png = s.column_blob(2);
-    scan.features = store::decode_features(s.column_blob_data(3), static_cast<size_t>(s.column_bytes(3)),
+    scan.features = store::decode_features(s.column_blob_data(3), s.column_bytes(3),
                                            path_ + ": user " + std::to_string(user));
     scan.descriptor = s.column_text(4);
     scan.descriptor_version = static_cast<int>(s.column_int(5));
@@ -98,9 +98,9 @@ std::vector<StoredScan> Gallery::user_scans(UserId user) {
 }
 
 std::vector<Event> Gallery::events(std::optional<UserId> user) {
-  std::string sql = "SELECT id, user, kind, score, view, time_ms, track, source FROM events";
-  sql += user ? " WHERE user = ?1 ORDER BY id" : " ORDER BY id";
-  sql::Statement s(*db_, sql.c_str());
+  std::string sql = "SELECT id, \"user\", kind, score, view, time_ms, track, source, sensor FROM events";
+  sql += user ? " WHERE \"user\" = ?1 ORDER BY id" : " ORDER BY id";
+  sql::Statement s(*db_, sql);
   if (user) s.bind(1, static_cast<int64_t>(*user));
   std::vector<Event> events;
   while (s.step()) {
@@ -116,14 +116,10 @@ std::vector<Event> Gallery::events(std::optional<UserId> user) {
     e.time = from_unix_ms(s.column_int(5));
     if (!s.is_null(6)) e.track = s.column_int(6);
     e.source = s.column_text(7);
+    e.sensor = s.column_text(8);
     events.push_back(std::move(e));
   }
   return events;
-}
-
-std::string Gallery::integrity_check() {
-  sql::Statement s(*db_, "PRAGMA integrity_check");
-  return s.step() ? s.column_text(0) : "";
 }
 
 }  // namespace bodyrec

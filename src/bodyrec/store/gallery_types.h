@@ -82,13 +82,17 @@ struct Event {
   GalleryTime time = GalleryClock::now();
   std::optional<int64_t> track;  // tracking id of the body in the source
   std::string source;            // recording or camera the event came from; "" when unknown
+  std::string sensor;            // the sensor that logged it (reid --sensor-id); "" when unknown
 };
 
 // What forget/purge/prune erased.
 struct EraseReport {
   std::vector<UserId> users;
   int scans = 0, images = 0, masks = 0, events = 0;
-  bool checkpointed = true;  // false when another process kept old pages in the WAL (see gallery.h)
+  bool checkpointed = true;  // SQLite: false when another process kept old pages in the WAL (see gallery.h);
+                             // PostgreSQL: false when the role may not run CHECKPOINT
+  bool scrubbed = true;      // the database was rewritten (VACUUM / VACUUM FULL)
+  std::string note;          // what the scrubbing could not do, for the operator; "" when all was done
 };
 
 }  // namespace bodyrec

@@ -7,7 +7,8 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/store/feature_blob.h"
 #include "bodyrec/store/gallery.h"
-#include "bodyrec/store/sqlite.h"
+#include "bodyrec/store/connection.h"
+#include "bodyrec/store/gallery_backend.h"
 
 namespace bodyrec {
 
@@ -20,7 +21,7 @@ std::vector<unsigned char> encode_png(const cv::Mat& image, const std::string& w
   return png;
 }
 
-int64_t count(sql::Database& db, const char* sql, UserId user) {
+int64_t count(sql::Connection& db, const char* sql, UserId user) {
   sql::Statement s(db, sql);
   s.bind(1, static_cast<int64_t>(user));
   return s.step() ? s.column_int(0) : 0;
@@ -30,8 +31,8 @@ int64_t count(sql::Database& db, const char* sql, UserId user) {
 
 void Gallery::touch(UserId user, GalleryTime time) {
   sql::Statement s(*db_,
-                   "UPDATE users SET last_seen_ms = max(last_seen_ms, ?1), first_seen_ms = min(first_seen_ms, ?1) "
-                   "WHERE id = ?2");
+                   "UPDATE users SET last_seen_ms = CASE WHEN last_seen_ms < ?1 THEN ?1 ELSE last_seen_ms END, "
+                   "first_seen_ms = CASE WHEN first_seen_ms > ?1 THEN ?1 ELSE first_seen_ms END WHERE id = ?2");
   s.bind(1, to_unix_ms(time)).bind(2, static_cast<int64_t>(user)).run();
 }
 
@@ -39,9 +40,12 @@ UserId Gallery::add_user(const std::string& label, GalleryTime time) {
   UserId id = 0;
   transaction([&] {
     sql::Statement s(*db_,
-                     "INSERT INTO users(label, created_ms, first_seen_ms, last_seen_ms) VALUES (?1, ?2, ?3, ?3)");
-    s.bind(1, label).bind(2, to_unix_ms(GalleryClock::now())).bind(3, to_unix_ms(time)).run();
-    id = db_->last_insert_rowid();
+                     "INSERT INTO users(label, created_ms, first_seen_ms, last_seen_ms) VALUES (?1, ?2, ?3, ?3) "
+                     "RETURNING id");
+    s.bind(1, label).bind(2, to_unix_ms(GalleryClock::now())).bind(3, to_unix_ms(time));
+    if (!s.step()) throw ProcessingError(path_ + ": adding a user returned no id");
+    id = s.column_int(0);
+    s.reset();
   });
   return id;
 }
@@ -49,8 +53,10 @@ UserId Gallery::add_user(const std::string& label, GalleryTime time) {
 void Gallery::set_label(UserId user, const std::string& label) {
   transaction([&] {
     sql::Statement s(*db_, "UPDATE users SET label = ?1 WHERE id = ?2");
-    s.bind(1, label).bind(2, static_cast<int64_t>(user)).run();
-    if (db_->changes() == 0) throw InputError(path_ + ": no user " + std::to_string(user));
+    s.bind(1, label).bind(2, static_cast<int64_t>(user));
+    while (s.step()) {
+    }
+    if (s.changes() == 0) throw InputError(path_ + ": no user " + std::to_string(user));
   });
 }
 
@@ -70,18 +76,18 @@ PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
     if (count(*db_, "SELECT count(*) FROM users WHERE id = ?1", user) == 0)
       throw InputError(path_ + ": no user " + std::to_string(user));
     sql::Statement old(*db_,
-                       "SELECT quality, descriptor, descriptor_version FROM scans WHERE user = ?1 AND view = ?2");
+                       "SELECT quality, descriptor, descriptor_version FROM scans WHERE \"user\" = ?1 AND view = ?2");
     old.bind(1, static_cast<int64_t>(user)).bind(2, static_cast<int64_t>(scan.view));
     const char* sql = nullptr;
     if (!old.step()) {
       result = PutResult::kInserted;
-      sql = "INSERT INTO scans(user, view, image_png, mask_png, features, descriptor, descriptor_version, "
+      sql = "INSERT INTO scans(\"user\", view, image_png, mask_png, features, descriptor, descriptor_version, "
             "quality, time_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)";
     } else if (scan.quality > old.column_double(0) || old.column_text(1) != scan.descriptor ||
                old.column_int(2) != scan.descriptor_version) {
       result = PutResult::kReplaced;
       sql = "UPDATE scans SET image_png = ?3, mask_png = ?4, features = ?5, descriptor = ?6, "
-            "descriptor_version = ?7, quality = ?8, time_ms = ?9 WHERE user = ?1 AND view = ?2";
+            "descriptor_version = ?7, quality = ?8, time_ms = ?9 WHERE \"user\" = ?1 AND view = ?2";
     }
     old.reset();
     if (sql) {
@@ -93,6 +99,7 @@ PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
     }
     touch(user, scan.time);
     if (sql) {
+      scans_changed();
       GalleryEntry entry;
       entry.user = user;
       entry.view = scan.view;
@@ -112,22 +119,27 @@ int64_t Gallery::log_event(const Event& event) {
     if (event.user && count(*db_, "SELECT count(*) FROM users WHERE id = ?1", *event.user) == 0)
       throw InputError(path_ + ": event for unknown user " + std::to_string(*event.user));
     sql::Statement s(*db_,
-                     "INSERT INTO events(user, kind, score, view, time_ms, track, source) "
-                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+                     "INSERT INTO events(\"user\", kind, score, view, time_ms, track, source, sensor) "
+                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8) RETURNING id");
     s.bind(1, event.user ? std::optional<int64_t>(*event.user) : std::nullopt);
     s.bind(2, std::string(event_kind_name(event.kind))).bind(3, event.score);
     s.bind(4, event.view ? std::optional<int64_t>(static_cast<int64_t>(*event.view)) : std::nullopt);
-    s.bind(5, to_unix_ms(event.time)).bind(6, event.track).bind(7, event.source).run();
-    id = db_->last_insert_rowid();
+    s.bind(5, to_unix_ms(event.time)).bind(6, event.track).bind(7, event.source);
+    s.bind(8, event.sensor.empty() ? options_.sensor : event.sensor);
+    if (!s.step()) throw ProcessingError(path_ + ": logging an event returned no id");
+    id = s.column_int(0);
+    s.reset();
     if (event.user) touch(*event.user, event.time);
     if (options_.max_events_per_user > 0) {
-      // The newest max_events_per_user of this user's events stay (events_user indexes (user, id));
+      // The newest max_events_per_user of this user's events stay (events_user indexes (user, id); an
+      // equality, not IS NOT DISTINCT FROM, so that PostgreSQL uses the index too); SQLite's
       // secure_delete zeroes the erased rows.
-      sql::Statement trim(*db_,
-                          "DELETE FROM events WHERE user IS ?1 AND id <= (SELECT id FROM events WHERE user IS ?1 "
-                          "ORDER BY id DESC LIMIT 1 OFFSET ?2)");
-      trim.bind(1, event.user ? std::optional<int64_t>(*event.user) : std::nullopt);
-      trim.bind(2, static_cast<int64_t>(options_.max_events_per_user)).run();
+      sql::Statement trim(*db_, event.user ? "DELETE FROM events WHERE \"user\" = ?2 AND id <= (SELECT id FROM events "
+                                             "WHERE \"user\" = ?2 ORDER BY id DESC LIMIT 1 OFFSET ?1)"
+                                           : "DELETE FROM events WHERE \"user\" IS NULL AND id <= (SELECT id FROM "
+                                             "events WHERE \"user\" IS NULL ORDER BY id DESC LIMIT 1 OFFSET ?1)");
+      if (event.user) trim.bind(2, static_cast<int64_t>(*event.user));
+      trim.bind(1, static_cast<int64_t>(options_.max_events_per_user)).run();
     }
   });
   return id;
@@ -152,14 +164,15 @@ UserId Gallery::enrol(const GalleryScan& scan, const std::string& label, std::op
 }
 
 void Gallery::erase_user(UserId user, EraseReport& report) {
+  scans_changed();
   report.users.push_back(user);
-  report.scans += static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1", user));
-  report.images +=
-      static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1 AND image_png IS NOT NULL", user));
-  report.masks +=
-      static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE user = ?1 AND mask_png IS NOT NULL", user));
-  report.events += static_cast<int>(count(*db_, "SELECT count(*) FROM events WHERE user = ?1", user));
-  for (const char* sql : {"DELETE FROM events WHERE user = ?1", "DELETE FROM scans WHERE user = ?1",
+  report.scans += static_cast<int>(count(*db_, "SELECT count(*) FROM scans WHERE \"user\" = ?1", user));
+  report.images += static_cast<int>(
+      count(*db_, "SELECT count(*) FROM scans WHERE \"user\" = ?1 AND image_png IS NOT NULL", user));
+  report.masks += static_cast<int>(
+      count(*db_, "SELECT count(*) FROM scans WHERE \"user\" = ?1 AND mask_png IS NOT NULL", user));
+  report.events += static_cast<int>(count(*db_, "SELECT count(*) FROM events WHERE \"user\" = ?1", user));
+  for (const char* sql : {"DELETE FROM events WHERE \"user\" = ?1", "DELETE FROM scans WHERE \"user\" = ?1",
                           "DELETE FROM users WHERE id = ?1"}) {
     sql::Statement s(*db_, sql);
     s.bind(1, static_cast<int64_t>(user)).run();
@@ -167,15 +180,10 @@ void Gallery::erase_user(UserId user, EraseReport& report) {
   cache_erase(user);
 }
 
-// Deleted rows are already zeroed by secure_delete, but their old pages may still sit in the WAL and
-// the file keeps its size: VACUUM rewrites the database compactly, then a TRUNCATE checkpoint copies
-// the WAL into the file and empties the WAL. A reader in another process can keep the checkpoint from
-// finishing; the report says so (the pages go at the next checkpoint).
+// The backend rewrites the database so that the erased rows leave no bytes in its files (gallery_backend.h).
 void Gallery::scrub(EraseReport& report) {
   if (depth_ > 0) throw ProcessingError(path_ + ": forget/purge/prune cannot run inside a transaction");
-  db_->exec("VACUUM");
-  sql::Statement s(*db_, "PRAGMA wal_checkpoint(TRUNCATE)");
-  report.checkpointed = s.step() && s.column_int(0) == 0;
+  backend_->scrub(report);
 }
 
 EraseReport Gallery::forget(UserId user) {
@@ -204,6 +212,7 @@ EraseReport Gallery::purge() {
     report.images = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE image_png IS NOT NULL"));
     report.masks = static_cast<int>(db_->query_int("SELECT count(*) FROM scans WHERE mask_png IS NOT NULL"));
     report.events = static_cast<int>(db_->query_int("SELECT count(*) FROM events"));
+    scans_changed();
     db_->exec("DELETE FROM events; DELETE FROM scans; DELETE FROM users;");
     for (auto& view : cache_) view.clear();
   });

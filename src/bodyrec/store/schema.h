@@ -1,18 +1,25 @@
-// The gallery's SQL schema and the steps that upgrade an older file to the current version.
+// The gallery's SQL schema and the steps that upgrade an older gallery to the current version: one
+// list of steps for both databases (store/connection.h), column types written as placeholders that
+// each dialect spells its own way.
 #pragma once
 
-namespace bodyrec::sql {
-class Database;
-}
+#include <string>
+
+#include "bodyrec/store/connection.h"
 
 namespace bodyrec::store {
 
-// PRAGMA application_id of a bodyrec gallery ("brg1"): tells a gallery from other SQLite files.
+// Marks a bodyrec gallery ("brg1"): SQLite's PRAGMA application_id; the key of PostgreSQL's advisory
+// lock around schema upgrades.
 constexpr int kGalleryApplicationId = 0x62726731;
 
-// Upgrades the open database from schema `from` (0 = empty file) to kGallerySchemaVersion, one step per
-// version, inside the caller's transaction. Each step ends by setting PRAGMA user_version.
-// REQUIRES: from < kGallerySchemaVersion.
-void upgrade_schema(sql::Database& db, int from);
+// The DDL that upgrades schema `from` to `from + 1` in `dialect` (0 = a new gallery). The caller runs it
+// inside one transaction and then records the new version (gallery_backend.h).
+// REQUIRES: 0 <= from < kGallerySchemaVersion.
+std::string schema_step(sql::Dialect dialect, int from);
+
+// Column-type placeholders -> the dialect's words: {id} (an id never reused: AUTOINCREMENT / identity),
+// {key} (a row id), {int}, {real}, {blob}.
+std::string ddl(sql::Dialect dialect, const std::string& text);
 
 }  // namespace bodyrec::store

@@ -1,0 +1,102 @@
+#include "bodyrec/events/event_spool.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "bodyrec/core/error.h"
+
+namespace bodyrec {
+
+namespace {
+
+// Writes `text` as the whole content of `path` (mode 0600), through a temporary file and a rename so a
+// crash leaves the old or the new content.
+void replace_file(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+  if (fd < 0) throw ProcessingError(tmp + ": cannot write the event spool: " + std::strerror(errno));
+  const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  const int saved = errno;
+  ::close(fd);
+  if (!ok) throw ProcessingError(tmp + ": cannot write the event spool: " + std::strerror(saved));
+  if (::rename(tmp.c_str(), path.c_str()) != 0)
+    throw ProcessingError(path + ": cannot write the event spool: " + std::strerror(errno));
+}
+
+}  // namespace
+
+EventSpool::EventSpool(const std::string& path, size_t capacity) : path_(path), capacity_(capacity) {
+  if (capacity_ == 0) throw UsageError("event spool capacity must be at least 1");
+  {
+    std::ifstream sent(path_ + ".sent");
+    long long n = 0;
+    if (sent >> n && n > 0) sent_ = static_cast<size_t>(n);
+  }
+  std::ifstream in(path_);
+  std::string line;
+  size_t index = 0;
+  while (std::getline(in, line)) {
+    if (index++ < sent_) continue;
+    const auto j = nlohmann::json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("topic") || !j.contains("payload") ||
+        !j["topic"].is_string() || !j["payload"].is_string() || queue_.size() >= capacity_) {
+      ++dropped_;
+      continue;
+    }
+    queue_.push_back({j["topic"].get<std::string>(), j["payload"].get<std::string>()});
+  }
+  recovered_ = queue_.size();
+  // Start from a file holding exactly the queue: no delivered or unreadable lines before it.
+  compact();
+}
+
+void EventSpool::write_sent(size_t lines) { replace_file(path_ + ".sent", std::to_string(lines) + "\n"); }
+
+void EventSpool::append(const std::string& line) {
+  const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0600);
+  if (fd < 0) throw ProcessingError(path_ + ": cannot write the event spool: " + std::strerror(errno));
+  const bool ok = ::write(fd, line.data(), line.size()) == static_cast<ssize_t>(line.size());
+  const int saved = errno;
+  ::close(fd);
+  if (!ok) throw ProcessingError(path_ + ": cannot write the event spool: " + std::strerror(saved));
+}
+
+// The delivered count goes to 0 before the file loses its delivered lines: a crash in between delivers
+// them again rather than skipping undelivered ones.
+void EventSpool::compact() {
+  std::string text;
+  for (const SpooledEvent& e : queue_) text += nlohmann::json({{"topic", e.topic}, {"payload", e.payload}}).dump() + "\n";
+  write_sent(0);
+  replace_file(path_, text);
+  sent_ = 0;
+}
+
+bool EventSpool::push(const SpooledEvent& event) {
+  if (queue_.size() >= capacity_) {
+    ++dropped_;
+    return false;
+  }
+  append(nlohmann::json({{"topic", event.topic}, {"payload", event.payload}}).dump() + "\n");
+  queue_.push_back(event);
+  return true;
+}
+
+void EventSpool::pop() {
+  queue_.pop_front();
+  ++sent_;
+  if (queue_.empty() || (sent_ >= 1024 && sent_ > queue_.size())) {
+    compact();
+  } else {
+    write_sent(sent_);
+  }
+}
+
+}  // namespace bodyrec
