@@ -26,12 +26,12 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
   sub.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
 }
 
-void add_detector_options(CLI::App& sub, DetectorOptions& o) {
+void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& model_flag) {
   sub.add_option("--preset", o.preset,
                  "HOG preset: 'default' (tuned: motion regions, people 60-140 px, stride 8) or 'thesis' "
                  "(hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original size)")
       ->check(CLI::IsMember({"default", "thesis"}));
-  sub.add_option("--model", o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
+  sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
   const std::string p = " (default: the preset's value)";
