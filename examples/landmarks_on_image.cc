@@ -21,8 +21,8 @@ int main(int argc, char** argv) try {
 
   // The shipped model, found next to the installed library (models/README.md says how it was made).
   const bodyrec::BodyShapeModel shape(
-      bodyrec::require_model_file("body-shape.dat", "reinstall bodyrec, or train one with bodyrec train-shape"));
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("thesis"));
+      bodyrec::require_model_file(bodyrec::kShippedShapeModel, "reinstall bodyrec, or train one with bodyrec train-shape"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kThesis));
 
   const cv::Mat prepared = shape.prepare(image);
   for (const bodyrec::Detection& d : detector.detect(image)) {
