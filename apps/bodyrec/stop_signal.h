@@ -1,6 +1,7 @@
 // SIGINT and SIGTERM end a run cleanly: while a StopOnSignal lives, they set a flag that the frame loops
 // check between frames (outputs are then closed at their last whole line, the gallery keeps every commit,
-// and the program exits 0). A second signal ends the program at once, as without the handler.
+// and the program exits 0). A second signal a second or more after the first ends the program at once, as
+// without the handler (the same signal delivered twice at once counts as one).
 #pragma once
 
 namespace bodyrec::cli {
