@@ -12,6 +12,7 @@
 #include "bodyrec/rgbd/recording.h"
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
+#include "rgbd_input.h"
 #include "segment_options.h"
 
 namespace bodyrec::cli {
@@ -50,25 +51,29 @@ cv::Mat annotate(const cv::Mat& depth, double unit, const cv::Mat& ccd, const st
 struct ContourCommand {
   std::string recording, jsonl, annotate_path, method = "ccd";
   SegmentCliOptions seg;
+  LiveCliOptions live;
   int landmarks = 180, max_frames = -1;
   bool json = false, quiet = false;
 
   void run() const {
     const ContourMethod m = parse_contour_method(method);
-    RecordingReader reader(recording);
-    const RecordingMeta& meta = reader.meta();
-    if (!meta.streams.depth) throw InputError(recording + ": contour needs a depth stream");
+    check_input_given(recording, live);
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run with its outputs whole
+    RgbdInput input(recording, live);
+    const RecordingMeta& meta = input.meta();
+    if (!meta.streams.depth) throw InputError(input.name() + ": contour needs a depth stream");
     const bool body_index = meta.streams.body_index;
     std::optional<DepthSegmenter> segmenter;
-    if (!body_index) segmenter.emplace(make_segmenter(reader, seg));
+    if (!body_index)
+      segmenter.emplace(input.recording() ? make_segmenter(*input.recording(), seg) : make_segmenter(meta, seg));
     std::unique_ptr<JsonlWriter> out;
     if (!quiet || !jsonl.empty()) out = std::make_unique<JsonlWriter>(jsonl);
     std::unique_ptr<AnnotatedWriter> images;
     if (!annotate_path.empty()) images = std::make_unique<AnnotatedWriter>(annotate_path, meta.fps);
-    int frames = 0, last_bodies = 0;
+    int last_bodies = 0;
     double ms = 0;
     cv::Mat ccd;
-    for (RgbdFrame f; (max_frames < 0 || frames < max_frames) && reader.read(f); ++frames) {
+    const FrameLoopStats stats = run_rgbd_loop(input, live, max_frames, [&](RgbdFrame& f, const FrameArrival& arrival) {
       const auto t0 = std::chrono::steady_clock::now();
       const cv::Mat labels = body_index ? f.body_index : segmenter->segment(f.depth).labels;
       ccd_contour(labels, ccd);
@@ -88,17 +93,21 @@ struct ContourCommand {
           }
           jb.push_back({{"label", b.label}, {"outline_length", b.outline.size()}, {"landmarks", lm}, {"points", pts}});
         }
-        out->write({{"frame", f.index}, {"labels", body_index ? "bodyindex" : "segment"}, {"method", method}, {"bodies", jb}});
+        nlohmann::json line = {{"frame", f.index}, {"labels", body_index ? "bodyindex" : "segment"}, {"method", method}, {"bodies", jb}};
+        if (live.live()) line["dropped"] = arrival.dropped;
+        out->write(line);
       }
       if (images) images->write(f.index, annotate(f.depth, meta.depth_unit_m, ccd, bodies));
-    }
+    });
+    const int frames = stats.frames;
     const double per_frame = frames ? ms / frames : 0.0;
     if (!quiet || json)
       std::fprintf(stderr, "%d frames, %d bodies in the last (%s, %s); %.3f ms per frame\n", frames, last_bodies,
                    body_index ? "body index" : "depth-only segmentation", method.c_str(), per_frame);
     if (json) {
       const nlohmann::json j = {{"frames", frames}, {"bodies", last_bodies}, {"landmarks", landmarks},
-                                {"labels", body_index ? "bodyindex" : "segment"}, {"ms_per_frame", per_frame}};
+                                {"labels", body_index ? "bodyindex" : "segment"}, {"ms_per_frame", per_frame},
+                                {"dropped", stats.dropped}};
       std::printf("%s\n", j.dump().c_str());
     }
   }
@@ -107,7 +116,8 @@ struct ContourCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<ContourCommand>();
   CLI::App* sub = app.add_subcommand("contour", "Body outlines (CCD kernel or OpenCV) and 3D contour landmarks");
-  sub->add_option("REC", command->recording, "Recording with depth (body index used when present)")->required();
+  sub->add_option("REC", command->recording, "Recording with depth (body index used when present), or --sensor");
+  add_live_options(*sub, command->live);
   sub->add_option("--landmarks", command->landmarks, "Landmarks per body: equal arc length, 0 at the top, clockwise")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
@@ -119,7 +129,7 @@ void add(CLI::App& app) {
   add_segment_options(*sub, command->seg);
   sub->add_option("--max-frames", command->max_frames, "Stop after this many frames; -1 = all");
   sub->add_flag("-q,--quiet", command->quiet, "No JSON lines on stdout (unless --jsonl FILE)");
-  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, bodies in the last frame, ms_per_frame)");
+  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, bodies in the last frame, ms_per_frame, dropped)");
   sub->footer("Example: bodyrec contour rec_synth --landmarks 180 --annotate contours --jsonl contours.jsonl --json");
   sub->callback([command] { command->run(); });
 }

@@ -69,7 +69,7 @@ struct EvalOrientCommand {
                         {"face", b.face.looked ? nlohmann::json(b.face.face) : nlohmann::json()},
                         {"visible_fraction", t.visible_fraction}});
       }
-    });
+    }).frames;
     if (!any_truth) throw InputError(input + ": the recording has no truth stream (make one with bodyrec synth)");
     const double accuracy = scored ? static_cast<double>(correct) / scored : 0.0;
     const double within_one = scored ? static_cast<double>(adjacent) / scored : 0.0;

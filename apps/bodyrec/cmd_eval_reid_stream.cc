@@ -21,6 +21,9 @@ struct EvalReidStreamCommand {
 
   void run() const {
     ReidInput in = open_reid_input(input, options);  // before any file is created
+    if (!in.source)
+      throw InputError(input + ": eval reid-stream needs a recording with truth (bodyrec synth; --colour-only for its "
+                               "colour alone)");
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     // A fresh store in memory unless a gallery is named.
@@ -32,11 +35,13 @@ struct EvalReidStreamCommand {
       g = open_reid_gallery(options, gallery);
       store = std::make_unique<GalleryReidStore>(*g, *in.matcher, GalleryReidStoreOptions{input, std::nullopt});
     }
+    in.score_truth = true;
     ReidStreamCounter counter;
     bool any_truth = false;
-    int last_frame = -1;
+    int last_frame = -1, visible = 0;
     double ms = 0, last_time = 0;
     const int frames = run_reid(in, options, *store, [&](const ReidFrame& f) {
+      if (f.truth_visible > 0) visible += f.truth_visible;
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -63,7 +68,7 @@ struct EvalReidStreamCommand {
       }
       for (const ReidEvent& e : f.step.events)
         if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) counter.assign(e.track, e.user);
-    });
+    }).frames;
     if (!any_truth) throw InputError(input + ": the recording has no truth stream (make one with bodyrec synth)");
     const ReidStreamScore s = counter.score();
     const double per_frame = frames ? ms / frames : 0.0;
@@ -74,6 +79,9 @@ struct EvalReidStreamCommand {
     std::printf("splits        %d (one person enrolled as more than one user)\n", s.splits);
     std::printf("merges        %d (two people given one user)\n", s.merges);
     std::printf("ms per frame  %.2f (%s matcher)\n", per_frame, options.matcher.c_str());
+    // Colour-only: the people the detector and tracker never gave a body are not in the body-frames above.
+    const double coverage = visible > 0 ? static_cast<double>(s.frames) / visible : 0.0;
+    if (in.colour) std::printf("coverage      %.4f (body-frames with a true person / people visible)\n", coverage);
     if (json)
       std::printf("%s\n", nlohmann::json({{"accuracy", s.accuracy},
                                           {"splits", s.splits},
@@ -84,6 +92,8 @@ struct EvalReidStreamCommand {
                                           {"users", s.users},
                                           {"identities", s.identities},
                                           {"ms_per_frame", per_frame},
+                                          {"colour_only", in.colour != nullptr},
+                                          {"coverage", in.colour ? nlohmann::json(coverage) : nlohmann::json()},
                                           {"matcher", options.matcher},
                                           {"match_views", to_string(match_views(options))}})
                               .dump()
@@ -95,16 +105,20 @@ void add(CLI::App& app) {
   auto command = std::make_shared<EvalReidStreamCommand>();
   CLI::App* sub = app.add_subcommand(
       "reid-stream", "Score online re-identification on a recording with truth: per-frame accuracy, splits, merges");
-  sub->add_option("REC", command->input, "Recording with a truth stream (bodyrec synth)")->required();
+  sub->add_option("REC", command->input,
+                  "Recording with a truth stream (bodyrec synth); with --colour-only its colour frames alone, each "
+                  "tracked box scored as the true person whose pixels fill most of it")
+      ->required();
   sub->add_option("--gallery", command->gallery,
                   "Start from (and write to) this gallery instead of a fresh one in memory");
   add_reid_options(*sub, command->options, false);
   sub->add_option("--jsonl", command->jsonl, "The run's per-frame output, as `bodyrec reid --jsonl` writes it, each body with its true \"person\" (identity, null when none)");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (accuracy, splits, merges, frames, body_frames, undecided, users, "
-                "identities, ms_per_frame)");
+                "identities, ms_per_frame, colour_only, coverage: colour-only body-frames with a true person over "
+                "the people visible)");
   sub->footer("Example: bodyrec synth --scenario reenter --people 5 --frames 300 --seed 2 --out rec -q && "
-              "bodyrec eval reid-stream rec --json");
+              "bodyrec eval reid-stream rec --json && bodyrec eval reid-stream rec --colour-only --json");
   sub->callback([command] { command->run(); });
 }
 

@@ -9,6 +9,7 @@
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "orient_job.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -32,13 +33,15 @@ struct OrientCommand {
   bool json = false, quiet = false;
 
   void run() const {
+    check_input_given(input, options.live);
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run with its outputs whole
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     std::map<std::string, int> per_view;
     int bodies = 0, none = 0;
     double ms = 0;
-    const int frames = run_orientation(input, options, [&](const OrientFrame& f) {
+    const FrameLoopStats stats = run_orientation(input, options, [&](const OrientFrame& f) {
       nlohmann::json list = nlohmann::json::array();
       for (const OrientedBody& b : f.result.bodies) {
         ++bodies;
@@ -57,8 +60,14 @@ struct OrientCommand {
         }
       }
       ms += f.result.ms;
-      if (lines) lines->write({{"frame", f.frame.index}, {"time_s", f.frame.time_s}, {"bodies", list}});
+      if (lines) {
+        nlohmann::json line = {{"frame", f.frame.index}, {"time_s", f.frame.time_s}, {"bodies", list}};
+        if (options.live.live()) line["dropped"] = f.arrival.dropped;
+        lines->write(line);
+      }
+      if (text) std::fflush(stdout);
     });
+    const int frames = stats.frames;
     const double per_body = bodies ? ms / bodies : 0.0;
     if (text) {
       std::printf("frames %d, bodies %d, no view %d, %.3f ms per body (%s)\nviews:", frames, bodies, none, per_body,
@@ -70,7 +79,7 @@ struct OrientCommand {
       nlohmann::json views = nlohmann::json::object();
       for (const auto& [name, n] : per_view) views[name] = n;
       std::printf("%s\n", nlohmann::json({{"frames", frames}, {"bodies", bodies}, {"no_view", none}, {"views", views},
-                                          {"ms_per_body", per_body}})
+                                          {"ms_per_body", per_body}, {"dropped", stats.dropped}})
                               .dump()
                               .c_str());
     }
@@ -80,17 +89,19 @@ struct OrientCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<OrientCommand>();
   CLI::App* sub = app.add_subcommand("orient", "Body orientation and view (F, FR, FL, SR, SL, B, BR, BL) per frame and body");
-  sub->add_option("INPUT", command->input, "Recording directory, or an NTU RGB+D .skeleton file")->required();
+  sub->add_option("INPUT", command->input, "Recording directory, or an NTU RGB+D .skeleton file (or --sensor)");
   add_orient_options(*sub, command->options);
+  add_live_options(*sub, command->options.live);
   sub->add_option("--jsonl", command->jsonl,
                   "Per-frame JSON lines {frame, time_s, bodies: [{key, slot, yaw_deg, view, confidence, source, face, "
-                  "reason}]}; '-' = stdout instead of the text lines");
+                  "reason}], dropped (live: frames dropped so far)}; '-' = stdout instead of the text lines");
   sub->add_flag("-q,--quiet", command->quiet, "No per-body text lines");
-  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, bodies, no_view, views, ms_per_body)");
+  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, bodies, no_view, views, ms_per_body, dropped)");
   sub->footer(
       "Yaw: 0 = facing the camera, +90 = facing -X (the image's left), +-180 = back (src/bodyrec/reid/orientation.h).\n"
       "Example: bodyrec orient ../shared/datasets/ntu_skeleton/samples/S001C001P001R001A011.skeleton\n"
-      "         bodyrec synth --people 3 --seed 2 --frames 90 --out rec -q && bodyrec orient rec --jsonl -");
+      "         bodyrec synth --people 3 --seed 2 --frames 90 --out rec -q && bodyrec orient rec --jsonl -\n"
+      "         bodyrec orient --sensor --jsonl live.jsonl   (a live OpenNI2 sensor, until Ctrl-C)");
   sub->callback([command] { command->run(); });
 }
 

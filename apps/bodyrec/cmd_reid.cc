@@ -1,7 +1,9 @@
-// `bodyrec reid REC [--gallery gallery.db]`: online re-identification of every body of an RGB-D
-// recording against a persistent gallery (thesis Ch6, several people at once): enrolments,
-// recognitions, added views and departures as events, and each body's user per frame. The gallery may be
-// a site's PostgreSQL database, and the events go over MQTT with --events (issue 47).
+// `bodyrec reid REC|VIDEO|--sensor|--camera N [--gallery gallery.db]`: online re-identification of every body
+// of an RGB-D recording or sensor, or of every person a plain camera sees, against a persistent gallery
+// (thesis Ch6, several people at once): enrolments, recognitions, added views and departures as events,
+// written as they are decided, and each body's user per frame. The gallery may be a site's PostgreSQL
+// database, and the events go over MQTT with --events (issue 47).
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -10,6 +12,7 @@
 #include "command.h"
 #include "event_options.h"
 #include "reid_output.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -21,6 +24,8 @@ struct ReidCommand {
   bool json = false, quiet = false;
 
   void run() const {
+    check_input_given(input, options.orient.live, options.colour.camera);
+    StopOnSignal stop;  // SIGINT/SIGTERM: the run ends after its frame, outputs whole, gallery committed, exit 0
     ReidInput in = open_reid_input(input, options);  // before any file is created
     RunEvents events = open_events(event_options, "reid");
     ReidCliOptions o = options;
@@ -29,11 +34,14 @@ struct ReidCommand {
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(o, o.gallery.path);
-    GalleryReidStore store(*gallery, *in.matcher, {input, std::nullopt});
+    const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
+                               : in.source                 ? in.source->name()
+                                                           : input;
+    GalleryReidStore store(*gallery, *in.matcher, {source, std::nullopt});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
-    const int frames = run_reid(in, o, store, [&](const ReidFrame& f) {
+    const ReidRunStats stats = run_reid(in, o, store, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -55,9 +63,12 @@ struct ReidCommand {
         if (e.score) std::printf(" score %.3f", *e.score);
         std::printf("\n");
       }
+      if (text && !f.step.events.empty()) std::fflush(stdout);  // as they happen, also into a pipe
       if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
     });
     const nlohmann::json delivery = events.finish();
+    const int frames = stats.frames;
+    const double p50 = percentile(stats.latency_ms, 50), p95 = percentile(stats.latency_ms, 95);
     const int users = gallery->user_count();
     const double per_frame = frames ? ms / frames : 0.0, per_body = bodies ? ms / bodies : 0.0;
     if (text)
@@ -65,6 +76,9 @@ struct ReidCommand {
                   "%.2f ms per frame, %.2f ms per body\n",
                   frames, bodies, counts["enrolled"], counts["recognised"], counts["view_added"], counts["left"],
                   gallery->path().c_str(), users, users == 1 ? "user" : "users", per_frame, per_body);
+    if (text && (stats.dropped > 0 || options.orient.live.live() || options.colour.camera >= 0))
+      std::printf("dropped %ld frames; event latency p50 %.1f ms, p95 %.1f ms%s\n", stats.dropped, p50, p95,
+                  stats.stopped ? "; stopped by a signal" : "");
     if (json)
       std::printf("%s\n", nlohmann::json({{"frames", frames},
                                           {"body_frames", bodies},
@@ -75,6 +89,11 @@ struct ReidCommand {
                                           {"users", users},
                                           {"ms_per_frame", per_frame},
                                           {"ms_per_body", per_body},
+                                          {"dropped", stats.dropped},
+                                          {"latency_ms_p50", std::round(p50 * 100) / 100},
+                                          {"latency_ms_p95", std::round(p95 * 100) / 100},
+                                          {"stopped", stats.stopped},
+                                          {"colour_only", in.colour != nullptr},
                                           {"matcher", options.matcher},
                                           {"match_views", to_string(match_views(options))},
                                           {"sensor", events.sensor},
@@ -87,27 +106,36 @@ struct ReidCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<ReidCommand>();
   CLI::App* sub = app.add_subcommand(
-      "reid", "Re-identify people in an RGB-D recording online: enrol new users, recognise known ones (gallery)");
-  sub->add_option("REC", command->input, "Recording (bodyrec record/import/synth): colour, depth, and bodies or body "
-                                         "index when it has them")
-      ->required();
-  add_reid_options(*sub, command->options);
+      "reid",
+      "Re-identify people online from an RGB-D recording or sensor, or a plain camera (video, images, --camera): "
+      "enrol new users, recognise known ones (gallery)");
+  sub->add_option("INPUT", command->input,
+                  "A recording (bodyrec record/import/synth: colour, depth, and bodies or body index when it has "
+                  "them), or a plain camera's video, image folder or glob (or --sensor, --camera N)");
+  add_reid_options(*sub, command->options, true, true);
+  add_live_options(*sub, command->options.orient.live, true, true);
   add_sensor_option(*sub, command->event_options);
   add_event_options(*sub, command->event_options);
   sub->add_option("--jsonl", command->jsonl,
-                  "Per frame: each body's track, user (null while undecided), view, box; the events; ms per stage. "
+                  "Per frame, written and flushed as it is decided: each body's track, user (null while undecided), "
+                  "view, box; the events; ms per stage; live runs add arrival and wall (Unix seconds) and dropped. "
                   "'-' = stdout");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (frames, body_frames, enrolled, recognised, view_added, left, users, "
-                "ms_per_frame, ms_per_body, sensor, events: {delivered, pending, dropped, recovered, spool, topic} "
-                "with --events)");
+                "ms_per_frame, ms_per_body, dropped, latency_ms_p50, latency_ms_p95: from a frame's arrival to its "
+                "events' flush, stopped, colour_only, sensor, events: {delivered, pending, dropped, recovered, "
+                "spool, topic} with --events)");
   sub->add_flag("-q,--quiet", command->quiet, "No per-event lines");
-  sub->footer("Example: bodyrec synth --scenario reenter --people 4 --frames 300 --out rec -q && "
-              "bodyrec reid rec --gallery gallery.db --jsonl reid.jsonl && bodyrec report reid.jsonl --gallery "
-              "gallery.db --out report.html\n"
-              "Several sensors: bodyrec reid rec --gallery postgresql://bodyrec_sensor@db.site/bodyrec_site "
-              "--sensor-id door --events mqtt://broker.site/site --events-credentials door.cred "
-              "(README \"Several sensors\")");
+  sub->footer(
+      "SIGINT or SIGTERM ends a run cleanly (outputs whole, gallery committed, exit 0).\n"
+      "Example: bodyrec synth --scenario reenter --people 4 --frames 300 --out rec -q && "
+      "bodyrec reid rec --gallery gallery.db --jsonl reid.jsonl && bodyrec report reid.jsonl --gallery "
+      "gallery.db --out report.html\n"
+      "         bodyrec reid /usr/share/doc/opencv-doc/examples/data/vtest.avi --gallery g.db --jsonl -\n"
+      "         bodyrec reid rec --colour-only --gallery g.db   (the recording's colour alone)\n"
+      "         bodyrec reid --sensor --gallery g.db   (a live OpenNI2 sensor, until Ctrl-C)\n"
+      "Several sensors: bodyrec reid rec --gallery postgresql://bodyrec_sensor@db.site/bodyrec_site "
+      "--sensor-id door --events mqtt://broker.site/site --events-credentials door.cred (docs/guides/sites.md)");
   sub->callback([command] { command->run(); });
 }
 

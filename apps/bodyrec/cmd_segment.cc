@@ -12,6 +12,7 @@
 #include "bodyrec/rgbd/recording.h"
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
+#include "rgbd_input.h"
 #include "segment_options.h"
 
 namespace bodyrec::cli {
@@ -20,33 +21,42 @@ namespace {
 struct SegmentCommand {
   std::string recording, jsonl, masks;
   SegmentCliOptions seg;
+  LiveCliOptions live;
   int max_frames = -1;
   bool json = false, quiet = false;
 
   void run() const {
-    RecordingReader reader(recording);
-    if (!reader.meta().streams.depth) throw InputError(recording + ": segment needs a depth stream");
+    check_input_given(recording, live);
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run with its outputs whole
+    RgbdInput input(recording, live);
+    if (!input.meta().streams.depth) throw InputError(input.name() + ": segment needs a depth stream");
     if (!masks.empty()) {
       std::error_code ec;
       std::filesystem::create_directories(masks, ec);
       if (ec) throw ProcessingError(masks + ": cannot create (" + ec.message() + ")");
     }
-    DepthSegmenter segmenter = make_segmenter(reader, seg);
+    DepthSegmenter segmenter =
+        input.recording() ? make_segmenter(*input.recording(), seg) : make_segmenter(input.meta(), seg);
     std::unique_ptr<JsonlWriter> out;
     if (!quiet || !jsonl.empty()) out = std::make_unique<JsonlWriter>(jsonl);
-    int frames = 0, last_people = 0;
+    int last_people = 0;
     double ms = 0;
-    for (RgbdFrame f; (max_frames < 0 || frames < max_frames) && reader.read(f); ++frames) {
+    const FrameLoopStats stats = run_rgbd_loop(input, live, max_frames, [&](RgbdFrame& f, const FrameArrival& arrival) {
       const auto t0 = std::chrono::steady_clock::now();
       const Segmentation s = segmenter.segment(f.depth);
       ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       last_people = static_cast<int>(s.people.size());
-      if (out) out->write(segmentation_to_json(f.index, s));
+      if (out) {
+        nlohmann::json line = segmentation_to_json(f.index, s);
+        if (live.live()) line["dropped"] = arrival.dropped;
+        out->write(line);
+      }
       if (!masks.empty()) {
         const std::string file = masks + "/" + frame_stem(f.index) + ".png";
         if (!cv::imwrite(file, s.labels)) throw ProcessingError(file + ": cannot write image");
       }
-    }
+    });
+    const int frames = stats.frames;
     const double per_frame = frames ? ms / frames : 0.0;
     if (!quiet || json)
       std::fprintf(stderr, "segmented %d frames, %d people in the last; %.2f ms per frame (%s)\n", frames, last_people,
@@ -55,7 +65,8 @@ struct SegmentCommand {
       const nlohmann::json j = {{"frames", frames},
                                 {"people", last_people},
                                 {"background", segmenter.has_background()},
-                                {"ms_per_frame", per_frame}};
+                                {"ms_per_frame", per_frame},
+                                {"dropped", stats.dropped}};
       std::printf("%s\n", j.dump().c_str());
     }
   }
@@ -64,16 +75,18 @@ struct SegmentCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<SegmentCommand>();
   CLI::App* sub = app.add_subcommand("segment", "Find people in depth alone (background, ground plane, clusters)");
-  sub->add_option("REC", command->recording, "Recording directory with a depth stream")->required();
+  sub->add_option("REC", command->recording, "Recording directory with a depth stream (or --sensor)");
+  add_live_options(*sub, command->live);
   sub->add_option("--jsonl", command->jsonl, "Per-frame people and boxes as JSON lines; default stdout");
   sub->add_option("--masks", command->masks, "Folder for NNNNNN.png label masks (0..5 person, 255 none)");
   add_segment_options(*sub, command->seg);
   sub->add_option("--max-frames", command->max_frames, "Stop after this many frames; -1 = all");
   sub->add_flag("-q,--quiet", command->quiet, "No JSON lines on stdout (unless --jsonl FILE)");
-  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people in the last frame, ms_per_frame)");
+  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people in the last frame, ms_per_frame, dropped)");
   sub->footer(
       "Example: bodyrec import pcd five_people.pcd --out rec && bodyrec segment rec --json\n"
-      "         bodyrec segment rec_synth --masks masks --jsonl people.jsonl --json");
+      "         bodyrec segment rec_synth --masks masks --jsonl people.jsonl --json\n"
+      "         bodyrec segment --sensor --jsonl live.jsonl   (a live OpenNI2 sensor, until Ctrl-C)");
   sub->callback([command] { command->run(); });
 }
 

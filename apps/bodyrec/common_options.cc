@@ -27,7 +27,7 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
   sub.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
 }
 
-void add_detector_options(CLI::App& sub, DetectorOptions& o) {
+void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& model_flag) {
   sub.add_option("--preset", o.preset,
                  "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
                  "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
@@ -36,7 +36,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o) {
                  "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)")
       ->check(CLI::IsMember({"auto", "default", "photo", "thesis", "opencv"}))
       ->capture_default_str();
-  sub.add_option("--model", o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
+  sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
   const std::string p = " (default: the preset's value)";

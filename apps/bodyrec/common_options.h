@@ -43,7 +43,8 @@ struct DetectorOptions {
               *o_adapt = nullptr, *o_motion_margin = nullptr;
 };
 
-void add_detector_options(CLI::App& sub, DetectorOptions& options);
+// `model_flag` names the fHOG model option (`--model`; a command whose --model is something else renames it).
+void add_detector_options(CLI::App& sub, DetectorOptions& options, const std::string& model_flag = "--model");
 
 // Builds the detector; throws UsageError for inconsistent options, InputError for a bad model file.
 // `consecutive_frames` says the frames come from one video or camera: motion regions (when the preset

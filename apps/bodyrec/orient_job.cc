@@ -34,8 +34,8 @@ bool is_skeleton_file(const std::string& input) {
   return input.size() > 9 && input.compare(input.size() - 9, 9, ".skeleton") == 0;
 }
 
-OrientSource::OrientSource(const std::string& input) : name_(input) {
-  if (is_skeleton_file(input)) {
+OrientSource::OrientSource(const std::string& input, const LiveCliOptions& live) : name_(input) {
+  if (!live.sensor && is_skeleton_file(input)) {
     const NtuSkeleton s = read_ntu_skeleton(input);
     double rms[2];
     meta_.sensor = "Kinect v2 (NTU RGB+D skeleton)";
@@ -44,14 +44,15 @@ OrientSource::OrientSource(const std::string& input) : name_(input) {
     ntu_ = ntu_bodies(s, input);
     frames_ = static_cast<int>(ntu_.size());
   } else {
-    reader_.emplace(input);
-    meta_ = reader_->meta();
-    frames_ = reader_->frame_count();
+    rgbd_.emplace(input, live);
+    name_ = rgbd_->name();
+    meta_ = rgbd_->meta();
+    frames_ = rgbd_->frame_count();
   }
 }
 
 bool OrientSource::read(RgbdFrame& f) {
-  if (reader_) return reader_->read(f);
+  if (rgbd_) return rgbd_->read(f);
   if (next_ >= frames_) return false;
   f = RgbdFrame{};
   f.index = next_;
@@ -62,8 +63,9 @@ bool OrientSource::read(RgbdFrame& f) {
 }
 
 std::optional<DepthSegmenter> OrientSource::segmenter(const OrientCliOptions& options) const {
-  if (!reader_ || !uses_own_segmentation(meta_, options.pipeline.bodies)) return std::nullopt;
-  return make_segmenter(*reader_, options.seg);
+  if (!rgbd_ || !uses_own_segmentation(meta_, options.pipeline.bodies)) return std::nullopt;
+  if (const RecordingReader* recording = rgbd_->recording()) return make_segmenter(*recording, options.seg);
+  return make_segmenter(meta_, options.seg);
 }
 
 void check_orient_options(const OrientCliOptions& options) {
@@ -71,18 +73,18 @@ void check_orient_options(const OrientCliOptions& options) {
     throw UsageError("--depth-only needs --views robust (the thesis rule reads joint quaternions)");
 }
 
-int run_orientation(const std::string& input, const OrientCliOptions& options,
-                    const std::function<void(const OrientFrame&)>& sink) {
+FrameLoopStats run_orientation(const std::string& input, const OrientCliOptions& options,
+                               const std::function<void(const OrientFrame&)>& sink) {
   check_orient_options(options);
-  OrientSource source(input);
-  OrientPipeline pipeline(source.meta(), options.pipeline, source.segmenter(options), input);
-  const int frames = options.max_frames >= 0 ? std::min(source.frame_count(), options.max_frames) : source.frame_count();
-  int done = 0;
-  for (RgbdFrame f; done < frames && source.read(f); ++done) {
-    const OrientResult result = pipeline.process(f);
-    sink({f, result});
-  }
-  return done;
+  OrientSource source(input, options.live);
+  OrientPipeline pipeline(source.meta(), options.pipeline, source.segmenter(options), source.name());
+  return run_frame_loop<RgbdFrame>([&source](RgbdFrame& f) { return source.read(f); },
+                                   [](const RgbdFrame& f) { return f.time_s; },
+                                   loop_options(options.live, options.max_frames),
+                                   [&](RgbdFrame& f, const FrameArrival& arrival) {
+                                     const OrientResult result = pipeline.process(f);
+                                     sink({f, result, arrival});
+                                   });
 }
 
 }  // namespace bodyrec::cli

@@ -12,6 +12,7 @@
 
 #include "bodyrec/reid/orient_pipeline.h"
 #include "bodyrec/rgbd/recording.h"
+#include "rgbd_input.h"
 #include "segment_options.h"
 
 namespace bodyrec::cli {
@@ -20,6 +21,7 @@ struct OrientCliOptions {
   OrientPipelineOptions pipeline;
   int max_frames = -1;
   SegmentCliOptions seg;
+  LiveCliOptions live;  // a sensor or --realtime (add_live_options, by the commands that read live)
 };
 
 // --views, --no-faces, --depth-only, --bodies-from, --max-frames and the segmentation options.
@@ -28,14 +30,15 @@ void add_orient_options(CLI::App& sub, OrientCliOptions& options);
 struct OrientFrame {
   const RgbdFrame& frame;
   const OrientResult& result;
+  const FrameArrival& arrival;
 };
 
-// An opened source of RGB-D frames for the orientation stage: a recording, or an NTU skeleton file (bodies
-// only, cameras fitted to its joints) held in memory.
+// An opened source of RGB-D frames for the orientation stage: a recording or a live sensor (rgbd_input.h),
+// or an NTU skeleton file (bodies only, cameras fitted to its joints) held in memory.
 class OrientSource {
  public:
-  // InputError naming the file when it cannot be read.
-  explicit OrientSource(const std::string& input);
+  // InputError naming the file (or saying there is no sensor) when it cannot be read.
+  explicit OrientSource(const std::string& input, const LiveCliOptions& live = {});
   const RecordingMeta& meta() const { return meta_; }
   const std::string& name() const { return name_; }
   int frame_count() const { return frames_; }
@@ -45,7 +48,7 @@ class OrientSource {
 
  private:
   std::string name_;
-  std::optional<RecordingReader> reader_;
+  std::optional<RgbdInput> rgbd_;
   std::vector<std::vector<Body>> ntu_;
   RecordingMeta meta_;
   int frames_ = 0, next_ = 0;
@@ -54,10 +57,10 @@ class OrientSource {
 // UsageError naming the flags for a combination the pipeline refuses.
 void check_orient_options(const OrientCliOptions& options);
 
-// Runs over every frame (up to max_frames) and calls `sink` per frame. Returns the number of frames.
+// Runs over every frame (up to max_frames; a live source until a signal) and calls `sink` per frame.
 // InputError/UsageError as the readers and options say; `sink` exceptions propagate.
-int run_orientation(const std::string& input, const OrientCliOptions& options,
-                    const std::function<void(const OrientFrame&)>& sink);
+FrameLoopStats run_orientation(const std::string& input, const OrientCliOptions& options,
+                               const std::function<void(const OrientFrame&)>& sink);
 
 // Whether the input is an NTU RGB+D .skeleton file (else a recording directory).
 bool is_skeleton_file(const std::string& input);

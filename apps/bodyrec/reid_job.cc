@@ -7,7 +7,7 @@
 
 namespace bodyrec::cli {
 
-void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
+void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option, bool camera) {
   if (gallery_option) add_gallery_path_option(sub, o.gallery);
   std::string names;
   for (const auto& n : matcher_names()) names += (names.empty() ? "" : ", ") + n;
@@ -64,6 +64,7 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   sub.add_option("--left-after", o.reid.left_after_s, "Seconds unseen after which a body has left")
       ->capture_default_str();
   add_orient_options(sub, o.orient);
+  add_colour_options(sub, o.colour, camera);
 }
 
 MatchViews match_views(const ReidCliOptions& options) {
@@ -86,38 +87,33 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
 }
 
 ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options) {
-  if (is_skeleton_file(input)) throw InputError(input + ": re-identification needs a recording with colour and depth");
   check_orient_options(options.orient);
-  ReidInput in{input, std::make_unique<OrientSource>(input), nullptr};
+  const LiveCliOptions& live = options.orient.live;
+  if (!live.sensor && is_colour_input(input, options.colour)) {
+    ReidInput in{input, nullptr, nullptr, nullptr};
+    if (options.colour.colour_only && options.colour.camera >= 0)
+      throw UsageError("--colour-only reads a recording's colour; --camera is colour already");
+    if (options.colour.colour_only) {
+      if (is_skeleton_file(input)) throw InputError(input + ": --colour-only needs a recording with colour");
+      in.source = std::make_unique<OrientSource>(input, live);
+      if (!in.source->meta().streams.color) throw InputError(input + "/meta.json: --colour-only needs a colour stream");
+    }
+    in.colour = open_colour_input(input, options.colour, options.orient.pipeline.orientation.use_faces, options.reid);
+    if (live.realtime && in.colour->frames && !in.colour->video)
+      throw UsageError("--realtime plays a recording or a video at its frame rate; " + in.colour->frames->describe() +
+                       " has none");
+    in.matcher = make_matcher(options.matcher, options.model);
+    return in;
+  }
+  if (options.colour.colour_only) throw UsageError("--colour-only reads a recording, not a sensor");
+  if (!live.sensor && is_skeleton_file(input))
+    throw InputError(input + ": re-identification needs a recording with colour and depth");
+  ReidInput in{input, std::make_unique<OrientSource>(input, live), nullptr, nullptr};
   if (!in.source->meta().streams.color || !in.source->meta().streams.depth)
-    throw InputError(input + "/meta.json: re-identification needs colour and depth streams");
+    throw InputError(in.source->name() + (live.sensor ? "" : "/meta.json") +
+                     ": re-identification needs colour and depth streams");
   in.matcher = make_matcher(options.matcher, options.model);
   return in;
-}
-
-int run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore& store,
-             const std::function<void(const ReidFrame&)>& sink) {
-  ReidPipelineOptions po;
-  po.orient = options.orient.pipeline;
-  po.reid = options.reid;
-  po.reid.all_views = match_views(options) == MatchViews::kAll;
-  if (options.stature_wait >= 0) po.stature_wait_frames = options.stature_wait;
-  OrientSource& source = *input.source;
-  ReidPipeline pipeline(source.meta(), store, *input.matcher, po, source.segmenter(options.orient), input.path);
-  const int limit = options.orient.max_frames >= 0 ? std::min(source.frame_count(), options.orient.max_frames)
-                                                   : source.frame_count();
-  int frames = 0;
-  for (RgbdFrame f; frames < limit && source.read(f); ++frames) {
-    const ReidResult r = pipeline.process(f);
-    sink({f, r.bodies, r.step, r.ms_orient, r.ms_scan, r.ms_reid});
-  }
-  RgbdFrame end;
-  end.index = -1;
-  ReidStep last;
-  last.events = pipeline.finish();
-  const std::vector<OrientedBody> none;
-  sink({end, none, last});
-  return frames;
 }
 
 }  // namespace bodyrec::cli

@@ -1,5 +1,7 @@
 // Shared by `bodyrec reid` and `bodyrec eval reid-stream`: the options of online re-identification, and the
-// loop that reads a recording frame by frame through a ReidPipeline (reid/reid_pipeline.h) on a store.
+// loop that reads frames one by one through a ReidPipeline (reid/reid_pipeline.h: a recording or a live
+// sensor) or a ColourReidPipeline (reid/colour_reid_pipeline.h: a video, images, a camera, or a recording's
+// colour alone) on a store.
 #pragma once
 
 #include <functional>
@@ -12,6 +14,8 @@
 
 #include "bodyrec/reid/gallery_reid_store.h"
 #include "bodyrec/reid/reid_pipeline.h"
+#include "colour_input.h"
+#include "frame_loop.h"
 #include "gallery_options.h"
 #include "orient_job.h"
 
@@ -31,11 +35,13 @@ struct ReidCliOptions {
   std::string sensor;  // recorded with the gallery's events (reid --sensor-id)
   OnlineReidOptions reid;
   int stature_wait = -1;  // --stature-wait; -1: ReidPipelineOptions' default
+  ColourCliOptions colour;  // the plain-camera path (orient.live: a sensor, --realtime)
 };
 
 // --gallery, --matcher, --model, --no-images, --prune-unseen-for, --max-events-per-user, --decide-after, --max-wait,
-// --min-quality, --threshold, --left-after and the orientation/segmentation options.
-void add_reid_options(CLI::App& sub, ReidCliOptions& options, bool gallery_option = true);
+// --min-quality, --threshold, --left-after, the orientation/segmentation options and the plain-camera options
+// (colour_input.h; --camera with `camera`).
+void add_reid_options(CLI::App& sub, ReidCliOptions& options, bool gallery_option = true, bool camera = false);
 
 // The --match-views in effect: as given, else near for the kaze matcher (the thesis compares a scan with the
 // same and the complementary view) and all for the others.
@@ -46,7 +52,11 @@ struct ReidFrame {
   const RgbdFrame& frame;  // index -1: the line after the last frame, with finish()'s events
   const std::vector<OrientedBody>& bodies;  // same order as step.identities
   const ReidStep& step;
-  double ms_orient = 0, ms_scan = 0, ms_reid = 0;
+  double ms_orient = 0, ms_scan = 0, ms_reid = 0;  // colour: ms_orient is detection and tracking
+  const FrameArrival* arrival = nullptr;  // when the frame came (live runs: for the output's times)
+  bool colour = false;                    // from the colour pipeline
+  bool live = false;                      // a sensor, a camera or --realtime
+  int truth_visible = -1;                 // colour-only with truth scoring: people visible in the frame
 };
 
 // What a run needs before any file is written: the recording (InputError when it cannot be read or lacks
@@ -54,16 +64,28 @@ struct ReidFrame {
 // gallery or output, so a wrong path leaves no empty files behind.
 struct ReidInput {
   std::string path;
-  std::unique_ptr<OrientSource> source;
+  std::unique_ptr<OrientSource> source;  // RGB-D frames: a recording (also for --colour-only) or a sensor
   std::unique_ptr<AppearanceMatcher> matcher;
+  std::unique_ptr<ColourInput> colour;   // the plain-camera path
+  bool score_truth = false;  // colour-only on a recording with truth: each body's true person (evaluation)
 };
 ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options);
 
-// Runs the recording through on `store`; `sink` gets every frame and, with frame.index = -1, finish()'s
-// `left` events. Returns the number of frames. Errors as the readers and the store say; output already passed
-// to `sink` stays valid.
-int run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore& store,
-             const std::function<void(const ReidFrame&)>& sink);
+struct ReidRunStats {
+  int frames = 0;
+  long dropped = 0;                  // live: frames dropped because processing fell behind
+  bool stopped = false;              // ended by SIGINT/SIGTERM
+  std::vector<double> latency_ms;    // per event: from its frame's arrival to the return of `sink`
+};
+
+// Runs the frames through on `store` (live sources through the grabber, until their end, --max-frames or a
+// signal); `sink` gets every frame and, with frame.index = -1, finish()'s `left` events. Errors as the
+// readers and the store say; output already passed to `sink` stays valid.
+ReidRunStats run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore& store,
+                      const std::function<void(const ReidFrame&)>& sink);
+
+// The p-th percentile (0..100) of `values` (nearest rank); 0 when empty.
+double percentile(std::vector<double> values, double p);
 
 // Opens (or creates) the gallery the options name.
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);

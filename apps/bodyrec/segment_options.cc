@@ -35,4 +35,12 @@ DepthSegmenter make_segmenter(const RecordingReader& reader, const SegmentCliOpt
   return segmenter;
 }
 
+DepthSegmenter make_segmenter(const RecordingMeta& meta, const SegmentCliOptions& options) {
+  if (options.segment.min_height_m >= options.segment.max_height_m)
+    throw UsageError("--min-height must be below --max-height");
+  if (options.background == "on")
+    throw UsageError("--background on learns from a recording's frames; a live sensor has none beforehand");
+  return DepthSegmenter(meta.depth, meta.depth_unit_m, options.segment);
+}
+
 }  // namespace bodyrec::cli

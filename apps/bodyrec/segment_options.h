@@ -22,5 +22,8 @@ void add_segment_options(CLI::App& sub, SegmentCliOptions& options);
 // A segmenter for the recording, with its background learnt as --background says (UsageError for
 // "on" with fewer than 2 frames).
 DepthSegmenter make_segmenter(const RecordingReader& reader, const SegmentCliOptions& options);
+// A segmenter for a live sensor: no background learnt beforehand (ground plane only; UsageError for
+// --background on).
+DepthSegmenter make_segmenter(const RecordingMeta& meta, const SegmentCliOptions& options);
 
 }  // namespace bodyrec::cli

@@ -32,20 +32,56 @@ class HomographyPlane : public GroundPlane {
 class TsaiPlane : public GroundPlane {
  public:
   // `ground_to_sensor` = f [r1 r2 T] (checked invertible by the caller).
-  TsaiPlane(double kappa1, double cx, double cy, double sx, double dpx, double dy,
-            const cv::Matx33d& ground_to_sensor, std::string name)
-      : kappa1_(kappa1), cx_(cx), cy_(cy), sx_(sx), dpx_(dpx), dy_(dy),
-        sensor_to_ground_(ground_to_sensor.inv()), name_(std::move(name)) {}
+  TsaiPlane(double kappa1, double cx, double cy, double sx, double dpx, double dy, double f, const cv::Matx33d& r,
+            const cv::Vec3d& t, const cv::Matx33d& ground_to_sensor, std::string name)
+      : kappa1_(kappa1), cx_(cx), cy_(cy), sx_(sx), dpx_(dpx), dy_(dy), f_(f), r_(r), t_(t),
+        sensor_to_ground_(ground_to_sensor.inv()), name_(std::move(name)) {
+    // World Z is up when the camera centre -R^T T lies on its positive side.
+    up_ = (-(r_.t() * t_))[2] >= 0 ? 1.0 : -1.0;
+  }
   cv::Point2d to_ground(const cv::Point2d& p) const override {
     const double xd = (p.x - cx_) * dpx_ / sx_, yd = (p.y - cy_) * dy_;
     const double k = 1.0 + kappa1_ * (xd * xd + yd * yd);
     const cv::Vec3d g = sensor_to_ground_ * cv::Vec3d(xd * k, yd * k, 1.0);
     return {g[0] / g[2] / 1000.0, g[1] / g[2] / 1000.0};  // mm -> m
   }
+  std::optional<double> height_m(const cv::Point2d& foot, const cv::Point2d& head) const override {
+    const cv::Point2d g = to_ground(foot) * 1000.0;  // mm
+    const auto row = [&](double h_mm) { return project({g.x, g.y, up_ * h_mm}); };
+    // Bisection on the row of the point h above the foot (rows fall as h grows, up to the horizon).
+    double lo = 300, hi = 3000;
+    const auto r_lo = row(lo), r_hi = row(hi);
+    if (!r_lo || !r_hi || !(head.y <= *r_lo && head.y >= *r_hi)) return std::nullopt;
+    for (int i = 0; i < 40; ++i) {
+      const double mid = (lo + hi) / 2;
+      const auto r = row(mid);
+      if (!r) return std::nullopt;
+      (*r > head.y ? lo : hi) = mid;
+    }
+    return (lo + hi) / 2 / 1000.0;
+  }
   std::string describe() const override { return "Tsai calibration " + name_; }
 
  private:
-  double kappa1_, cx_, cy_, sx_, dpx_, dy_;
+  // The image row of a world point (mm), nullopt behind the camera.
+  std::optional<double> project(const cv::Vec3d& world) const {
+    const cv::Vec3d c = r_ * world + t_;
+    if (!(c[2] > 0)) return std::nullopt;
+    const double xu = f_ * c[0] / c[2], yu = f_ * c[1] / c[2];
+    // Undistorted -> distorted sensor coordinates: Xu = Xd (1 + kappa1 rd^2), solved by fixed-point steps.
+    double xd = xu, yd = yu;
+    for (int i = 0; i < 20; ++i) {
+      const double k = 1.0 + kappa1_ * (xd * xd + yd * yd);
+      xd = xu / k;
+      yd = yu / k;
+    }
+    return yd / dy_ + cy_;
+  }
+
+  double kappa1_, cx_, cy_, sx_, dpx_, dy_, f_;
+  cv::Matx33d r_;
+  cv::Vec3d t_;
+  double up_ = 1;
   cv::Matx33d sensor_to_ground_;
   std::string name_;
 };
@@ -125,7 +161,7 @@ static std::unique_ptr<GroundPlane> tsai_from_document(const pugi::xml_document&
   const cv::Matx33d ground_to_sensor(f * r(0, 0), f * r(0, 1), f * t[0], f * r(1, 0), f * r(1, 1), f * t[1], r(2, 0),
                                      r(2, 1), t[2]);
   check_invertible(ground_to_sensor, path);
-  return std::make_unique<TsaiPlane>(kappa1, cx, cy, sx, dpx, dy, ground_to_sensor, path);
+  return std::make_unique<TsaiPlane>(kappa1, cx, cy, sx, dpx, dy, f, r, t, ground_to_sensor, path);
 }
 
 std::unique_ptr<GroundPlane> read_tsai_calibration(const std::string& path) {

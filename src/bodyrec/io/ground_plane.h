@@ -7,8 +7,9 @@
 //    distortion (`--calibration View_001.xml`).
 #pragma once
 
-#include <memory>
 #include <iosfwd>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -20,6 +21,15 @@ class GroundPlane {
   virtual ~GroundPlane() = default;
   // Ground position (metres) of an image point that lies on the ground (a person's feet).
   virtual cv::Point2d to_ground(const cv::Point2d& pixel) const = 0;
+  // The height (metres) of an upright segment standing on the ground at image point `foot` whose top is
+  // seen on the image row of `head`: a person's stature from their feet and the top of their head. Needs
+  // the whole camera (a Tsai calibration); nullopt for a homography, which maps the ground alone, and when
+  // `head` is not above `foot` within 0.3..3 m.
+  virtual std::optional<double> height_m(const cv::Point2d& foot, const cv::Point2d& head) const {
+    (void)foot;
+    (void)head;
+    return std::nullopt;
+  }
   virtual std::string describe() const = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "bodyrec/io/ground_plane.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "test_support.h"
@@ -54,6 +56,47 @@ TEST(GroundPlane, TsaiCalibrationMapsTheImageCentreOntoTheGround) {
   EXPECT_LT(ab, 10.0);
   EXPECT_GT(cv::norm(a - m) / ab, 0.40);
   EXPECT_LT(cv::norm(a - m) / ab, 0.49);
+}
+
+// Tsai's forward model written out here (world mm -> pixel) for the calibration above: a person standing at
+// a ground point, seen by this camera, has the stature height_m() measures.
+cv::Point2d tsai_pixel(const cv::Vec3d& world_mm) {
+  const double rx = 2.0405458695, ry = -0.89337703748, rz = -0.43056124791;
+  const double sa = std::sin(rx), ca = std::cos(rx), sb = std::sin(ry), cb = std::cos(ry), sg = std::sin(rz),
+               cg = std::cos(rz);
+  const cv::Matx33d r(cb * cg, cg * sa * sb - ca * sg, sa * sg + ca * cg * sb, cb * sg, sa * sb * sg + ca * cg,
+                      ca * sb * sg - cg * sa, -sb, cb * sa, ca * cb);
+  const cv::Vec3d c = r * world_mm + cv::Vec3d(828.73214225, -3175.4796051, 35469.298547);
+  const double f = 5.5549183034, kappa1 = 0.0051113043639;
+  const double xu = f * c[0] / c[2], yu = f * c[1] / c[2];
+  double xd = xu, yd = yu;
+  for (int i = 0; i < 50; ++i) {
+    const double k = 1 + kappa1 * (xd * xd + yd * yd);
+    xd = xu / k;
+    yd = yu / k;
+  }
+  return {1.0937855397 * xd / 0.0051273271277 + 324.22149053, yd / 0.00465 + 282.56650051};
+}
+
+TEST(GroundPlane, TsaiCalibrationMeasuresStatures) {
+  const auto plane = parse_tsai_calibration(kCalibration, "cal.xml");
+  for (const cv::Point2d foot : {cv::Point2d(384, 450), cv::Point2d(200, 300), cv::Point2d(600, 380)}) {
+    const cv::Point2d g = plane->to_ground(foot) * 1000.0;
+    // The ground point projects back onto the foot pixel: the forward model and to_ground agree.
+    const cv::Point2d back = tsai_pixel({g.x, g.y, 0});
+    EXPECT_NEAR(back.x, foot.x, 0.05);
+    EXPECT_NEAR(back.y, foot.y, 0.05);
+    // World Z is up for this camera (its centre is at positive Z).
+    for (const double stature : {1.55, 1.75, 1.95}) {
+      const cv::Point2d head = tsai_pixel({g.x, g.y, stature * 1000});
+      const auto h = plane->height_m(foot, head);
+      ASSERT_TRUE(h) << foot;
+      EXPECT_NEAR(*h, stature, 0.005) << foot;
+    }
+    EXPECT_FALSE(plane->height_m(foot, foot + cv::Point2d(0, 5)));  // below the foot: no stature
+  }
+  // A homography knows the ground only.
+  EXPECT_FALSE(homography_ground_plane(cv::Matx33d::eye(), "h")->height_m({10, 100}, {10, 20}));
 }
 
 TEST(GroundPlane, BrokenCalibrations) {

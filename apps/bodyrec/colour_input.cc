@@ -1,0 +1,92 @@
+#include "colour_input.h"
+
+#include <filesystem>
+
+#include "bodyrec/core/error.h"
+#include "bodyrec/detection/foreground_detector.h"
+#include "enum_option.h"
+
+namespace bodyrec::cli {
+
+void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
+  const std::string group = "Plain camera (a video, images, --camera, or --colour-only)";
+  const std::size_t before = sub.get_options().size();
+  sub.add_flag("--colour-only", o.colour_only,
+               "Use a recording's colour frames alone, as a plain camera would see them (depth, body index and "
+               "skeletons ignored)");
+  if (camera) sub.add_option("--camera", o.camera, "Read a live camera (V4L2 index) instead of a file; -1 = none");
+  add_enum_option(sub, "--detector", o.people,
+                  std::vector<std::pair<std::string, PeopleFrom>>{{"foreground", PeopleFrom::kForeground},
+                                                                  {"hog", PeopleFrom::kHog}},
+                  "People: foreground (background subtraction, for a static camera) or hog (the HOG detector "
+                  "with --preset and the HOG options; a dlib fHOG model with --detector-model)",
+                  "foreground");
+  add_detector_options(sub, o.detector, "--detector-model");
+  add_tracker_options(sub, o.tracking);
+  add_enum_option(sub, "--body-mask", o.mask,
+                  std::vector<std::pair<std::string, MaskFrom>>{{"foreground", MaskFrom::kForeground},
+                                                                {"shape", MaskFrom::kShape}},
+                  "What cuts each person out of their box: foreground (background subtraction inside the box) or "
+                  "shape (the outline of --shape-model, filled)",
+                  "foreground");
+  sub.add_option("--shape-model", o.shape_model, "Body shape model (bodyrec train-shape) for --body-mask shape");
+  sub.add_option("--calibration", o.calibration,
+                 "Tsai camera calibration (PETS 2009 XML): walking directions on the ground, and statures");
+  sub.add_option("--homography", o.homography,
+                 "Image -> ground homography (9 numbers, metres): walking directions on the ground, no statures");
+  sub.add_option("--background-history", o.history,
+                 "Frames of the background model (foreground detector and masks): someone still this long fades "
+                 "into the background")
+      ->check(CLI::Range(10, 100000))
+      ->capture_default_str();
+  const std::vector<CLI::Option*> all = sub.get_options();
+  for (std::size_t i = before; i < all.size(); ++i) all[i]->group(group);
+}
+
+bool is_colour_input(const std::string& path, const ColourCliOptions& options) {
+  if (options.camera >= 0 || options.colour_only) return true;
+  if (path.size() > 9 && path.compare(path.size() - 9, 9, ".skeleton") == 0) return false;
+  std::error_code ec;
+  return !(std::filesystem::is_directory(path, ec) && std::filesystem::exists(std::filesystem::path(path) / "meta.json", ec));
+}
+
+std::unique_ptr<ColourInput> open_colour_input(const std::string& path, const ColourCliOptions& o, bool use_faces,
+                                               const OnlineReidOptions& reid) {
+  if (!o.calibration.empty() && !o.homography.empty())
+    throw UsageError("--calibration and --homography: give one (a calibration maps the ground too)");
+  if (o.mask == MaskFrom::kShape && o.shape_model.empty()) throw UsageError("--body-mask shape needs --shape-model");
+  if (o.mask != MaskFrom::kShape && !o.shape_model.empty())
+    throw UsageError("--shape-model is used by --body-mask shape only");
+  if (o.people == PeopleFrom::kForeground && !o.detector.model_file.empty())
+    throw UsageError("--detector-model is a HOG-family detector: give --detector hog with it");
+  auto in = std::make_unique<ColourInput>();
+  ColourReidOptions& co = in->options;
+  co.tracking = o.tracking;
+  co.reid = reid;
+  co.views.use_faces = use_faces;
+  co.foreground.history = o.history;
+  co.check();
+  if (!o.colour_only) {
+    SourceOptions s;
+    s.path = o.camera >= 0 ? "" : path;
+    s.camera = o.camera;
+    in->frames = open_source(s);
+    in->video = o.camera < 0 && in->frames->fps().has_value();
+  }
+  if (o.people == PeopleFrom::kForeground) {
+    ForegroundOptions f;
+    f.history = o.history;
+    in->detector = std::make_unique<ForegroundPeopleDetector>(f);
+  } else {
+    in->detector = make_detector(o.detector, true);
+  }
+  if (!o.calibration.empty()) in->ground = read_colour_ground(o.calibration, GroundFile::kCalibration);
+  if (!o.homography.empty()) in->ground = read_colour_ground(o.homography, GroundFile::kHomography);
+  if (o.mask == MaskFrom::kShape) {
+    in->shape = std::make_unique<BodyShapeModel>(o.shape_model);
+    in->masker = std::make_unique<ShapeBodyMask>(*in->shape);
+  }
+  return in;
+}
+
+}  // namespace bodyrec::cli

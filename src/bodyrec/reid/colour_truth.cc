@@ -1,0 +1,37 @@
+#include "bodyrec/reid/colour_truth.h"
+
+#include "bodyrec/reid/partial_scan.h"
+
+namespace bodyrec {
+
+BoxTruth truth_for_boxes(const RecordingMeta& meta, const RgbdFrame& frame, const std::vector<cv::Rect>& boxes,
+                         double min_share, int min_visible_px) {
+  BoxTruth out;
+  out.person.assign(boxes.size(), -1);
+  if (!frame.truth || frame.depth.empty() || frame.body_index.empty() || frame.color.empty()) return out;
+  const PartialScanExtractor scans(meta);
+  std::vector<double> best(boxes.size(), 0.0);
+  const auto& people = frame.truth->people;
+  for (size_t p = 0; p < people.size(); ++p) {
+    if (people[p].body_index < 0) continue;
+    BodyRef ref;
+    ref.key = people[p].tracking_id;
+    ref.labels = frame.body_index;
+    ref.label = people[p].body_index;
+    const cv::Mat mask = scans.color_mask(frame, ref);
+    if (mask.empty()) continue;
+    if (cv::countNonZero(mask) >= min_visible_px) ++out.visible;
+    for (size_t i = 0; i < boxes.size(); ++i) {
+      const cv::Rect b = boxes[i] & cv::Rect(0, 0, mask.cols, mask.rows);
+      if (b.empty()) continue;
+      const double share = cv::countNonZero(mask(b)) / static_cast<double>(boxes[i].area());
+      if (share >= min_share && share > best[i]) {
+        best[i] = share;
+        out.person[i] = static_cast<int>(p);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace bodyrec

@@ -1,0 +1,181 @@
+// `bodyrec reid` on live and plain-camera sources as a user meets them: --realtime (frames dropped and
+// counted when processing falls behind), SIGINT/SIGTERM in the middle of a run, `gallery forget` from another
+// process during a run, --sensor without a device, a video, and a recording's colour alone.
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace bodyrec::testing {
+namespace {
+
+// 2 s at 30 frames per second.
+const fs::path& short_walk() {
+  return synth_recording({"--people", "3", "--seed", "21", "--frames", "60", "--scenario", "reenter"});
+}
+// 8 s at 30 frames per second.
+const fs::path& long_walk() {
+  return synth_recording({"--people", "3", "--seed", "11", "--frames", "240", "--scenario", "reenter"});
+}
+
+std::vector<nlohmann::json> jsonl_lines(const fs::path& file) {
+  std::vector<nlohmann::json> out;
+  for (const std::string& line : lines_of(read_text(file))) {
+    if (line.empty()) continue;
+    out.push_back(nlohmann::json::parse(line));  // throws (test error) on a broken line
+  }
+  return out;
+}
+
+std::string integrity(const fs::path& db_path) {
+  sqlite3* db = nullptr;
+  std::string result = "cannot open";
+  if (sqlite3_open_v2(db_path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK) {
+    sqlite3_stmt* st = nullptr;
+    if (sqlite3_prepare_v2(db, "PRAGMA integrity_check", -1, &st, nullptr) == SQLITE_OK && sqlite3_step(st) == SQLITE_ROW)
+      result = reinterpret_cast<const char*>(sqlite3_column_text(st, 0));
+    sqlite3_finalize(st);
+  }
+  sqlite3_close(db);
+  return result;
+}
+
+// A slow stage (100 ms a frame) behind a 30 fps recording played at its own rate: about two frames in three
+// are dropped, each counted, and every frame read is either processed or dropped. Read as fast as it is
+// processed (no --realtime), the same slow stage drops nothing.
+TEST(ReidLiveCli, RealtimeDropsAndCountsFramesWhenProcessingFallsBehind) {
+  TempDir dir;
+  const fs::path lines = dir / "r.jsonl";
+  RunResult r = run_bodyrec({"reid", short_walk().string(), "--gallery", (dir / "g.db").string(), "--realtime",
+                             "--test-delay-ms", "100", "--jsonl", lines.string(), "--json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = last_json_line(r.out);
+  const int frames = j["frames"].get<int>();
+  const long dropped = j["dropped"].get<long>();
+  EXPECT_GT(dropped, 20);
+  EXPECT_LT(frames, 40);
+  EXPECT_EQ(frames + dropped, 60);
+  EXPECT_FALSE(j["stopped"].get<bool>());
+  EXPECT_GE(j["latency_ms_p95"].get<double>(), j["latency_ms_p50"].get<double>());
+  const auto parsed = jsonl_lines(lines);
+  ASSERT_EQ(parsed.size(), static_cast<size_t>(frames) + 1);  // the frames and the end line
+  long last_dropped = 0;
+  for (size_t i = 0; i + 1 < parsed.size(); ++i) {
+    const auto& f = parsed[i];
+    ASSERT_TRUE(f.contains("dropped") && f.contains("arrival") && f.contains("wall")) << f.dump();
+    EXPECT_GE(f["dropped"].get<long>(), last_dropped);  // a running count
+    last_dropped = f["dropped"].get<long>();
+    EXPECT_GE(f["wall"].get<double>() + 1e-3, f["arrival"].get<double>());
+  }
+  EXPECT_TRUE(parsed.back()["end"].get<bool>());
+
+  r = run_bodyrec({"reid", short_walk().string(), "--gallery", (dir / "h.db").string(), "--test-delay-ms", "20",
+                   "--jsonl", (dir / "s.jsonl").string(), "--json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = last_json_line(r.out);
+  EXPECT_EQ(j["frames"].get<int>(), 60);
+  EXPECT_EQ(j["dropped"].get<long>(), 0);
+  EXPECT_FALSE(jsonl_lines(dir / "s.jsonl").front().contains("arrival"));
+}
+
+// SIGINT (Ctrl-C) or SIGTERM in the middle: exit 0, the JSON lines whole to the last, the end line written,
+// the gallery intact.
+TEST(ReidLiveCli, SignalEndsTheRunCleanly) {
+  for (const char* signal : {"INT", "TERM"}) {
+    TempDir dir;
+    const fs::path lines = dir / "r.jsonl", gallery = dir / "g.db";
+    const RunResult r =
+        run_bodyrec({"reid", long_walk().string(), "--realtime", "--gallery", gallery.string(), "--jsonl",
+                     lines.string(), "--json", "-q"},
+                    {"timeout", "--preserve-status", "-s", signal, "4"});
+    ASSERT_EQ(r.exit_code, 0) << signal << ": " << r.err;
+    const auto j = last_json_line(r.out);
+    EXPECT_TRUE(j["stopped"].get<bool>()) << signal;
+    EXPECT_GT(j["frames"].get<int>(), 10) << signal;
+    EXPECT_LT(j["frames"].get<int>() + j["dropped"].get<long>(), 240) << signal;
+    const auto parsed = jsonl_lines(lines);
+    ASSERT_FALSE(parsed.empty());
+    EXPECT_TRUE(parsed.back().value("end", false)) << signal;
+    EXPECT_EQ(integrity(gallery), "ok") << signal;
+    EXPECT_GE(j["users"].get<int>(), 1) << signal;
+  }
+}
+
+// `gallery forget 1` from another process while `reid --realtime` runs: the run goes on to the end, exits
+// 0, and user 1 is not written back.
+TEST(ReidLiveCli, GalleryForgetDuringARunIsKept) {
+  TempDir dir;
+  const fs::path gallery = dir / "g.db", forget_out = dir / "forget.txt";
+  const std::string script = "(sleep 5; \"$0\" gallery --gallery '" + gallery.string() + "' forget 1 >'" +
+                             forget_out.string() + "' 2>&1; echo \"rc $?\" >>'" + forget_out.string() +
+                             "') & \"$0\" \"$@\"; rc=$?; wait; exit $rc";
+  const RunResult r = run_bodyrec(
+      {"reid", long_walk().string(), "--realtime", "--gallery", gallery.string(), "--json", "-q"},
+      {"bash", "-c", script});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string forgot = read_text(forget_out);
+  ASSERT_TRUE(contains(forgot, "rc 0")) << forgot;
+  const auto j = last_json_line(r.out);
+  EXPECT_FALSE(j["stopped"].get<bool>());
+  EXPECT_EQ(j["frames"].get<int>() + j["dropped"].get<long>(), 240);
+  const RunResult show = run_bodyrec({"gallery", "--gallery", gallery.string(), "show", "1"});
+  EXPECT_EQ(show.exit_code, 3) << show.out;
+  EXPECT_EQ(integrity(gallery), "ok");
+}
+
+TEST(ReidLiveCli, SensorWithoutADeviceIsOneLineAndExit3) {
+  TempDir dir;
+  expect_one_line_error(run_bodyrec({"reid", "--sensor", "--gallery", (dir / "g.db").string()}), 3, "sensor");
+  expect_one_line_error(run_bodyrec({"segment", "--sensor", "--json"}), 3, "sensor");
+  EXPECT_FALSE(fs::exists(dir / "g.db"));
+  const RunResult both = run_bodyrec({"reid", short_walk().string(), "--sensor", "--gallery", (dir / "g.db").string()});
+  EXPECT_EQ(both.exit_code, 2) << both.err;
+  const RunResult none = run_bodyrec({"reid", "--gallery", (dir / "g.db").string()});
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+}
+
+// A plain camera's video: people found by background subtraction, enrolled, events on stdout as JSON lines.
+TEST(ReidLiveCli, VideoEnrolsPeople) {
+  if (!fs::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  TempDir dir;
+  const RunResult r = run_bodyrec(
+      {"reid", vtest_path().string(), "--gallery", (dir / "g.db").string(), "--max-frames", "250", "--jsonl", "-"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int enrolled = 0, lines = 0;
+  std::set<int> users;
+  for (const std::string& line : lines_of(r.out)) {
+    if (line.empty() || line[0] != '{') continue;
+    ++lines;
+    const auto f = nlohmann::json::parse(line);
+    for (const auto& e : f["events"])
+      if (e["kind"] == "enrolled") {
+        ++enrolled;
+        users.insert(e["user"].get<int>());
+      }
+  }
+  EXPECT_EQ(lines, 251);
+  EXPECT_GE(enrolled, 2);
+  EXPECT_EQ(users.size(), static_cast<size_t>(enrolled));
+}
+
+// A recording's colour alone: the colour pipeline runs and is scored against the truth.
+TEST(ReidLiveCli, ColourOnlyRecordingIsScored) {
+  const RunResult r = run_bodyrec({"eval", "reid-stream", long_walk().string(), "--colour-only", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_TRUE(j["colour_only"].get<bool>());
+  EXPECT_EQ(j["frames"].get<int>(), 240);
+  EXPECT_GT(j["body_frames"].get<int>(), 100);
+  EXPECT_GT(j["coverage"].get<double>(), 0.3);
+  const RunResult camera = run_bodyrec({"reid", long_walk().string(), "--colour-only", "--camera", "0"});
+  EXPECT_EQ(camera.exit_code, 2) << camera.err;
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
