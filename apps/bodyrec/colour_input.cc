@@ -5,6 +5,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/detection/foreground_detector.h"
 #include "enum_option.h"
+#include "shape_body_mask.h"
 
 namespace bodyrec::cli {
 

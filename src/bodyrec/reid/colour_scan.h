@@ -3,8 +3,8 @@
 // keeps per user and view (the same PartialScan as from an RGB-D frame, reid/partial_scan.h).
 //
 // Body masks (BodyMasker): the foreground of a background model inside the box (static camera; the
-// default), or the outline of a body shape model (landmarks/body_shape.h: the mask network or the thesis's
-// regression trees) filled. Either way the mask is reduced to its largest part.
+// default), or another masker, e.g. the program's filled outline of a body shape model (apps/bodyrec/
+// shape_body_mask.h). Either way the mask is reduced to its largest part.
 //
 // Quality in 0..1 = completeness x (0.5 + 0.5 sharpness) x (0.5 + 0.5 resolution), as for RGB-D scans:
 //   completeness: 1, times 0.4 when the box touches the image's top or bottom (the stripes descriptor spans
@@ -31,8 +31,6 @@
 
 namespace bodyrec {
 
-class BodyShapeModel;
-
 class BodyMasker {
  public:
   virtual ~BodyMasker() = default;
@@ -52,19 +50,6 @@ class ForegroundBodyMask : public BodyMasker {
 
  private:
   const ForegroundModel& model_;
-};
-
-// The outline of a body shape model's landmarks (bodyrec train-shape), filled. `model` must outlive this.
-class ShapeBodyMask : public BodyMasker {
- public:
-  explicit ShapeBodyMask(const BodyShapeModel& model) : model_(model) {}
-  cv::Mat mask(const cv::Mat& frame, const cv::Rect& box) override;
-  std::string describe() const override;
-
- private:
-  const BodyShapeModel& model_;
-  const uchar* prepared_for_ = nullptr;  // the frame `prepared_` was made from
-  cv::Mat prepared_;
 };
 
 struct ColourScanOptions {
