@@ -7,9 +7,11 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/detection_metrics.h"
 #include "bodyrec/io/ground_truth.h"
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "common_options.h"
 #include "detection_job.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -51,7 +53,7 @@ struct EvalDetectCommand {
       const nlohmann::json j = {{"ap50", s.ap},         {"precision", s.precision}, {"recall", s.recall},
                                 {"frames", s.frames},   {"ms_per_frame", ms},       {"ground_truth", s.ground_truth},
                                 {"detections", s.detections}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -64,7 +66,7 @@ void add(CLI::App& eval) {
   add_source_options(*sub, command->source, true);
   sub->add_option("--gt", command->gt, "Ground truth: PETS/CVML XML (.xml) or MOTChallenge gt.txt")->required();
   sub->add_option("--iou", command->iou, "IoU a detection needs to match a ground-truth box")
-      ->check(CLI::Range(0.05, 1.0));
+      ->check(in_range(0.05, 1.0));
   sub->add_flag("--json", command->json, "End stdout with one JSON object (ap50, precision, recall, frames, ms_per_frame)");
   add_output_options(*sub, command->outputs);
   add_detector_options(*sub, command->detector);

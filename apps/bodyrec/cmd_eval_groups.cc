@@ -7,8 +7,10 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/groups/group_eval.h"
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "group_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -57,7 +59,7 @@ struct EvalGroupsCommand {
                                 {"labelled_pairs", s.labelled_pairs}, {"predicted_pairs", s.predicted_pairs},
                                 {"true_pairs", s.true_pairs},    {"scene", scene.name},
                                 {"method", method},              {"model", model_name}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -74,10 +76,10 @@ void add(CLI::App& eval) {
   sub->add_option("--model", command->model,
                   "auto (built-in, never trained on this scene) or a model file from `bodyrec train-groups`");
   sub->add_option("--max-distance", command->max_distance, "threshold method: median distance limit (m)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub->add_option("--max-speed-difference", command->max_speed_difference,
                   "threshold method: median speed difference limit (m/s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   add_group_options(*sub, command->options);
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (pair_precision, pair_recall, pair_f1, pairs, ...)");

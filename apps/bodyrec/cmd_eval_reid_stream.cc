@@ -6,6 +6,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/reid_stream_metrics.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/reid/memory_reid_store.h"
 #include "command.h"
@@ -75,7 +76,7 @@ struct EvalReidStreamCommand {
     std::printf("merges        %d (two people given one user)\n", s.merges);
     std::printf("ms per frame  %.2f (%s matcher)\n", per_frame, options.matcher.c_str());
     if (json)
-      std::printf("%s\n", nlohmann::json({{"accuracy", s.accuracy},
+      std::printf("%s\n", json_text(nlohmann::json({{"accuracy", s.accuracy},
                                           {"splits", s.splits},
                                           {"merges", s.merges},
                                           {"frames", frames},
@@ -85,8 +86,7 @@ struct EvalReidStreamCommand {
                                           {"identities", s.identities},
                                           {"ms_per_frame", per_frame},
                                           {"matcher", options.matcher},
-                                          {"match_views", to_string(match_views(options))}})
-                              .dump()
+                                          {"match_views", to_string(match_views(options))}}))
                               .c_str());
   }
 };

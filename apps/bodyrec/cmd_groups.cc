@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "common_options.h"
 #include "groups_job.h"
@@ -56,7 +57,7 @@ struct GroupsCommand {
           {"leader_lost", lost_events},
           {"leader_reacquired", reacquired},
           {"leader_handovers", handovers}};
-      std::printf("%s\n", summary.dump().c_str());
+      std::printf("%s\n", json_text(summary).c_str());
     }
   }
 };

@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "orient_job.h"
@@ -69,9 +70,8 @@ struct OrientCommand {
     if (json) {
       nlohmann::json views = nlohmann::json::object();
       for (const auto& [name, n] : per_view) views[name] = n;
-      std::printf("%s\n", nlohmann::json({{"frames", frames}, {"bodies", bodies}, {"no_view", none}, {"views", views},
-                                          {"ms_per_body", per_body}})
-                              .dump()
+      std::printf("%s\n", json_text(nlohmann::json({{"frames", frames}, {"bodies", bodies}, {"no_view", none}, {"views", views},
+                                          {"ms_per_body", per_body}}))
                               .c_str());
     }
   }

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "reid_output.h"
@@ -53,7 +54,7 @@ struct ReidCommand {
                   frames, bodies, counts["enrolled"], counts["recognised"], counts["view_added"], counts["left"],
                   gallery->path().c_str(), users, users == 1 ? "user" : "users", per_frame, per_body);
     if (json)
-      std::printf("%s\n", nlohmann::json({{"frames", frames},
+      std::printf("%s\n", json_text(nlohmann::json({{"frames", frames},
                                           {"body_frames", bodies},
                                           {"enrolled", counts["enrolled"]},
                                           {"recognised", counts["recognised"]},
@@ -63,8 +64,7 @@ struct ReidCommand {
                                           {"ms_per_frame", per_frame},
                                           {"ms_per_body", per_body},
                                           {"matcher", options.matcher},
-                                          {"match_views", to_string(match_views(options))}})
-                              .dump()
+                                          {"match_views", to_string(match_views(options))}}))
                               .c_str());
   }
 };

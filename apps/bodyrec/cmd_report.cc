@@ -8,6 +8,7 @@
 #include "bodyrec/report/gallery_users.h"
 #include "bodyrec/report/report.h"
 #include "command.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -97,7 +98,7 @@ void add(CLI::App& app) {
                   "File holding the --json output of an eval command (kind from its keys); repeatable. Per-person "
                   "landmark errors (eval landmarks --per-person) give a histogram");
   sub->add_option("--gallery", command->gallery, "Gallery database (read-only): a row per user with their 8 views, first/last seen, events");
-  sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(CLI::Range(0, 12));
+  sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(in_range(0, 12));
   sub->add_flag("--no-images", command->no_images, "Leave every image of a person out of the page");
   sub->add_option("--out", command->out, "The HTML file to write")->required();
   sub->callback([command] { command->run(); });

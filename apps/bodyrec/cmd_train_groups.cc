@@ -10,6 +10,7 @@
 #include "bodyrec/groups/group_eval.h"
 #include "command.h"
 #include "group_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -47,7 +48,7 @@ void add(CLI::App& app) {
   sub->add_option("--l2", command->l2,
                   "L2 penalty on the standardised weights; with several values (and scenes), the one that does best "
                   "leave-one-scene-out within the training scenes")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   add_group_options(*sub, command->options);
   sub->callback([command] { command->run(); });
 }
