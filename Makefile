@@ -48,15 +48,20 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The whole suite again, built with AddressSanitizer + UndefinedBehaviorSanitizer (own build folder; any
-# report fails the test that triggered it). ASAN_CTEST_ARGS selects tests, e.g. ASAN_CTEST_ARGS="-LE data".
+# report fails the test that triggered it). ASAN_CTEST_ARGS selects tests, e.g. ASAN_CTEST_ARGS="-LE data";
+# ASAN_EXCLUDE is a regular expression of tests to leave out (ctest -E). ASAN_TARGET=library_tests builds and
+# runs only the library's own tests and the fuzz-input replay (what CI does, to stay within its budget).
 ASAN_BUILD ?= build-asan
-ASAN_CTEST_ARGS ?=
+ASAN_TARGET ?= all
+ASAN_CTEST_ARGS ?= $(if $(filter library_tests,$(ASAN_TARGET)),-L unit)
+ASAN_EXCLUDE ?=
 test-asan: deps
 	cmake -S . -B $(ASAN_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYREC_WERROR=ON -DBODYREC_SANITIZE=ON \
 	    -DBODYREC_BUILD_BENCH=OFF $(CMAKE_FLAGS)
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGET)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
-	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS)
+	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS) \
+	    $(if $(ASAN_EXCLUDE),-E '$(ASAN_EXCLUDE)')
 
 # libFuzzer + ASan + UBSan on every parser of outside input (clang; own build folder): each target runs
 # FUZZ_SECONDS; crashes land in build-fuzz/crashes/<target>/ (see scripts/fuzz and docs/reliability.md).

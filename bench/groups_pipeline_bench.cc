@@ -42,7 +42,7 @@ void BM_GroupsPipeline(benchmark::State& state) {
   const auto* loaded = frames_or_skip(state);
   if (!loaded) return;
   const auto& frames = *loaded;
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   bodyrec::DetectAndTrack tracking(detector, {});
   bodyrec::GroupStages pipeline({}, pets_ground());
   int n = 0;
@@ -60,7 +60,7 @@ void BM_GroupStagesOnly(benchmark::State& state) {
   const auto* loaded = frames_or_skip(state);
   if (!loaded) return;
   const auto& frames = *loaded;
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   bodyrec::DetectAndTrack tracking(detector, {});
   std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
   for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracking.step(static_cast<int>(i), frames[i]));
@@ -80,7 +80,7 @@ void BM_GroupsSoak(benchmark::State& state) {
   if (!loaded) return;
   const auto& frames = *loaded;
   for (auto _ : state) {
-    bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+    bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
     bodyrec::DetectAndTrack tracking(detector, {});
     bodyrec::GroupStages pipeline({}, pets_ground());
     double warm = 0;

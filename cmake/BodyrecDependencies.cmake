@@ -12,9 +12,9 @@ else()
   endmacro()
 endif()
 
-# OpenCV: only the modules bodyrec includes, found one by one (Debian's per-module -dev packages), so the
-# build does not need libopencv-dev, which drags in the 148 MB contrib package.
-set(BODYREC_OPENCV_MODULES core imgproc imgcodecs videoio objdetect video features2d flann)
+# OpenCV: only the modules bodyrec includes, found one by one (Debian's per-module -dev packages; the DPM photo
+# detector's module comes from libopencv-contrib-dev), so nothing is linked that no code uses.
+set(BODYREC_OPENCV_MODULES core imgproc imgcodecs videoio objdetect video features2d flann dpm)
 find_path(BODYREC_OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4 REQUIRED)
 foreach(module ${BODYREC_OPENCV_MODULES})
   if(NOT TARGET bodyrec_opencv::${module})

@@ -44,6 +44,9 @@ function(bodyrec_area_tests area)
   endif()
   bodyrec_test_exe(${area}_test unit bodyrec_${area} ${unit})
   bodyrec_test_exe(${area}_data_test data bodyrec_${area} ${data})
+  if(TARGET ${area}_test)
+    set_property(GLOBAL APPEND PROPERTY BODYREC_AREA_TESTS ${area}_test)
+  endif()
 endfunction()
 
 # Per-test time limit. Sanitizer builds get twice the limit.
@@ -65,7 +68,9 @@ function(bodyrec_test_exe name label library)
   add_executable(${name} ${sources})
   target_link_libraries(${name} PRIVATE ${library} bodyrec_test_support)
   bodyrec_warnings(${name})
-  add_dependencies(${name} bodyrec)  # the command-line tests run the program
+  if(library STREQUAL bodyrec_all)
+    add_dependencies(${name} bodyrec)  # the programs under tests/ run the command line; area tests do not
+  endif()
   set(excluded "")
   foreach(suite ${${name}_ONE_PROCESS})
     add_test(NAME ${suite}.AllInOneProcess COMMAND ${name} --gtest_filter=${suite}.*)

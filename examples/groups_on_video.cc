@@ -16,7 +16,7 @@ int main(int argc, char** argv) try {
   const auto source = bodyrec::open_source(source_options);
 
   // OpenCV's HOG people detector, searched around moving regions (a fixed camera).
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   bodyrec::GroupPipelineOptions options;
   options.fps = 7;  // vtest.avi was recorded at 7 frames per second (its header says 10)
   // No ground plane: distances in pixels, scaled by the people's box heights.

@@ -8,7 +8,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/model_files.h"
-#include "bodyrec/detection/hog_people_detector.h"
+#include "bodyrec/detection/dpm_people_detector.h"
 #include "bodyrec/landmarks/body_shape.h"
 
 int main(int argc, char** argv) try {
@@ -21,16 +21,19 @@ int main(int argc, char** argv) try {
 
   // The shipped model, found next to the installed library (models/README.md says how it was made).
   const bodyrec::BodyShapeModel shape(
-      bodyrec::require_model_file("body-shape.dat", "reinstall bodyrec, or train one with bodyrec train-shape"));
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("thesis"));
+      bodyrec::require_model_file(bodyrec::kShippedShapeModel, "reinstall bodyrec, or train one with bodyrec train-shape"));
+  // People of any size in a still photo: OpenCV's DPM with the INRIA person model (Debian's opencv-doc).
+  bodyrec::DpmPeopleDetector detector(bodyrec::dpm_photo_preset());
 
   const cv::Mat prepared = shape.prepare(image);
-  for (const bodyrec::Detection& d : detector.detect(image)) {
+  const std::vector<bodyrec::Detection> people = detector.detect(image);
+  for (const bodyrec::Detection& d : people) {
     const std::vector<cv::Point2d> points = shape.fit(prepared, d.box);
     std::printf("person at (%.0f, %.0f, %.0f x %.0f): %zu landmarks, the first at (%.1f, %.1f)\n", d.box.x, d.box.y,
                 d.box.width, d.box.height, points.size(), points.empty() ? 0.0 : points[0].x,
                 points.empty() ? 0.0 : points[0].y);
   }
+  std::printf("%zu people\n", people.size());
   return 0;
 } catch (const bodyrec::Error& e) {
   std::fprintf(stderr, "landmarks_on_image: %s\n", e.what());

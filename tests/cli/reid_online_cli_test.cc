@@ -55,7 +55,7 @@ TEST(EvalReidStreamCli, SixBodiesAtOnceAreSixPeople) {
   EXPECT_EQ(j["users"].get<int>(), 6);
   EXPECT_EQ(j["merges"].get<int>(), 0);
   EXPECT_EQ(j["splits"].get<int>(), 0);
-  EXPECT_GE(j["accuracy"].get<double>(), 0.95);  // 0.987 when written (2026-12-02)
+  EXPECT_GE(j["accuracy"].get<double>(), 0.95);  // 0.987 when written
   // Frames with six bodies, each with its own user once decided.
   const std::string text = read_text(lines);
   int six = 0, six_distinct = 0;

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
@@ -46,6 +47,12 @@ class FrameSource {
 // decoded here), or when its frames are above the pixel limit (image_header.h: the first image's header,
 // the capture's size); UsageError on bad options. Later images above the limit are InputErrors of read().
 std::unique_ptr<FrameSource> open_source(const SourceOptions& options);
+
+// The image files `files` in the given order as one source (frame i = files[i]), with --start, --every and
+// --max-frames applied; `description` names it in messages. A file that cannot be decoded is an InputError
+// when it is read. REQUIRES: files is not empty.
+std::unique_ptr<FrameSource> open_image_list(std::vector<std::string> files, const std::string& description,
+                                             const SourceOptions& options);
 
 // True when the path's extension is an image format OpenCV reads (png, jpg, jpeg, bmp, tif, tiff, ppm,
 // pgm, webp), case-insensitive.

@@ -20,8 +20,8 @@ bool at_end(std::istream& in) { return in.peek() == std::char_traits<char>::eof(
 
 BodyShapeModel::BodyShapeModel() : impl_(std::make_unique<Impl>()) {}
 
-// A mask-net file is its magic bytes, the network, the landmark count, then (files since 2026-12-02)
-// the landmarks' arc offsets, then (since 2026-12-03) the shape correction; anything else is read as a
+// A mask-net file is its magic bytes, the network, the landmark count, then, when present (older
+// files end earlier), the landmarks' arc offsets and the shape correction; anything else is read as a
 // dlib shape_predictor.
 BodyShapeModel::BodyShapeModel(const std::string& path) : BodyShapeModel() {
   std::ifstream in(path, std::ios::binary);

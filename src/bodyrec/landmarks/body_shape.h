@@ -21,6 +21,10 @@ class BodyMaskNet;
 // Chosen on the Penn-Fudan validation people (docs/benchmarks.md, "Several thresholds").
 inline const std::vector<double> kDefaultThresholdOffsets = {-2.0, -1.0, 0.0, 1.0, 2.0};
 
+// The body shape model bodyrec ships (models/README.md: two mask networks trained on Penn-Fudan), found with
+// find_model_file (core/model_files.h).
+constexpr const char* kShippedShapeModel = "body-shape.dat";
+
 class BodyShapeModel {
  public:
   enum class Kind { kTrees, kMaskNet };
@@ -52,8 +56,8 @@ class BodyShapeModel {
   // image (true, the default) or the box's alone (BodyMaskNet::fitting_logits). Throws UsageError for
   // the trees.
   void set_mirror_average(bool on);
-  // Mask network only: fit() applies the model's linear shape correction (true, the default; models
-  // trained before 2026-12-03 have none) or not. Throws UsageError for the trees.
+  // Mask network only: fit() applies the model's linear shape correction (true, the default; files
+  // without a correction section have none) or not. Throws UsageError for the trees.
   void set_shape_correction(bool on);
   // Mask network only: before tracing each outline, fit() cuts a slit between the legs where the logits
   // dip below the threshold + kLegSlitMargin (true, the default; leg_gap.h) or not. Throws UsageError for

@@ -451,7 +451,7 @@ TEST_F(TrainedMaskNet, ModelFilesCountTheirNetworksAndFittingAveragesThem) {
   const auto& image = train_->images[2];
   const Box box = image.people[0].box;
   const cv::Mat logits = net.logits(image.image, box), reference = net.reference_logits(image.image, box);
-  // Version 1 (2026-12-01 to 2026-12-05) had one network and no count.
+  // Format version 1 had one network and no count.
   const BodyMaskNet old = load(model_header(net, 1, 1) + weights, "v1.dat");
   EXPECT_EQ(old.networks(), 1);
   EXPECT_EQ(cv::norm(old.logits(image.image, box), logits, cv::NORM_INF), 0.0);

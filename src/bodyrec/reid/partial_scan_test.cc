@@ -92,7 +92,7 @@ TEST_F(PartialScanOnOnePerson, MaskCoversTheTruePixelsAndQualityDropsWhenClipped
   ASSERT_GE(clipped, 2);
   std::printf("full views %d, mean IoU %.3f, min IoU %.3f, best quality full %.3f, clipped %d best %.3f\n", full, sum_iou / full, min_iou, best_full,
               clipped, best_clipped);
-  // Measured 2026-11-23 on seed 5 (58 full views): mean IoU 0.969, min 0.927; recall about 0.99 and
+  // Measured on seed 5 (58 full views): mean IoU 0.969, min 0.927; recall about 0.99 and
   // precision 0.98 (splatting and closing the depth pixels; edge dropouts and parallax cost the rest).
   EXPECT_GE(min_iou, 0.92);
   EXPECT_GE(sum_iou / full, 0.96);
