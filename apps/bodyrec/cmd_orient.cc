@@ -34,7 +34,6 @@ struct OrientCommand {
 
   void run() const {
     std::unique_ptr<JsonlWriter> lines;
-    if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     std::map<std::string, int> per_view;
     int bodies = 0, none = 0;
@@ -59,6 +58,8 @@ struct OrientCommand {
       }
       ms += f.result.ms;
       if (lines) lines->write({{"frame", f.frame.index}, {"time_s", f.frame.time_s}, {"bodies", list}});
+    }, [&] {  // the recording is open and checked: a refused one leaves no JSONL behind
+      if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     });
     const double per_body = bodies ? ms / bodies : 0.0;
     if (text) {

@@ -149,7 +149,8 @@ std::string usage_message(const CLI::ParseError& error, const CLI::App& app) {
 
   if (dynamic_cast<const CLI::RequiredError*>(&error) && (m == "A subcommand" || m == "A subcommand is required")) {
     const CLI::App* at = deepest_parsed(app);
-    const auto left = at->remaining();
+    auto left = at->remaining();
+    if (left.empty()) left = app.remaining(true);  // with fallthrough, a subcommand's stray word lands at the root
     if (!left.empty())
       return command_path(at) + ": unknown command '" + left.front() + "' (one of " + subcommand_names(*at) + ")";
     return command_path(at) + ": a command is required (one of " + subcommand_names(*at) + ")";

@@ -72,11 +72,12 @@ void check_orient_options(const OrientCliOptions& options) {
 }
 
 int run_orientation(const std::string& input, const OrientCliOptions& options,
-                    const std::function<void(const OrientFrame&)>& sink) {
+                    const std::function<void(const OrientFrame&)>& sink, const std::function<void()>& opened) {
   check_orient_options(options);
   OrientSource source(input);
   OrientPipeline pipeline(source.meta(), options.pipeline, source.segmenter(options), input);
   const int frames = options.max_frames >= 0 ? std::min(source.frame_count(), options.max_frames) : source.frame_count();
+  if (opened) opened();
   int done = 0;
   for (RgbdFrame f; done < frames && source.read(f); ++done) {
     const OrientResult result = pipeline.process(f);

@@ -107,7 +107,8 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"eval", "detect", "--source", v, "--gt", "gt.txt", "--iou", "0.01"},
                      "--iou: 0.01 is not in [0.05, 1]");
   expect_usage_error({"report", "run.jsonl", "--out", "r.html", "--key-frames", "13"}, "--key-frames: 13 is not in [0, 12]");
-  expect_usage_error({"reid", "rec", "--threshold", "-1"}, "--threshold: -1 is not a non-negative number");
+  expect_usage_error({"reid", "rec", "--max-events-per-user", "-1"},
+                     "--max-events-per-user: -1 is not a non-negative number");
   expect_usage_error({"detect", v, "--every", "abc"}, "--every: abc is not a number");
   expect_usage_error({"detect", v, "--every", "2.5"}, "--every: 2.5 is not a whole number");
   expect_usage_error({"detect", v, "--max-frames", "99999999999"}, "--max-frames: 99999999999 is out of range");
@@ -123,7 +124,7 @@ TEST(UsageErrors, ParseErrorsAreOneLineInBodyrecsFormat) {
   expect_usage_error({"detect", v, "extra"}, "unexpected argument extra (see bodyrec detect --help)");
   expect_usage_error({"detect", v, "--every"}, "--every: missing value");
   expect_usage_error({"detect", v, "--roi", "10", "10"}, "--roi: expects 4 values, got 2");
-  expect_usage_error({"eval", "detect", "--source", v}, "--gt is required");
+  expect_usage_error({"report", "run.jsonl"}, "--out is required");
   const RunResult none = run_bodyrec({});
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_EQ(none.err.rfind("bodyrec: error: bodyrec: a command is required (one of eval, detect, track,", 0), 0u)
