@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/rgbd/contour.h"
 #include "bodyrec/rgbd/recording.h"
@@ -14,6 +15,7 @@
 #include "command.h"
 #include "rgbd_input.h"
 #include "segment_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -108,7 +110,7 @@ struct ContourCommand {
       const nlohmann::json j = {{"frames", frames}, {"bodies", last_bodies}, {"landmarks", landmarks},
                                 {"labels", body_index ? "bodyindex" : "segment"}, {"ms_per_frame", per_frame},
                                 {"dropped", stats.dropped}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -119,10 +121,10 @@ void add(CLI::App& app) {
   sub->add_option("REC", command->recording, "Recording with depth (body index used when present), or --sensor");
   add_live_options(*sub, command->live);
   sub->add_option("--landmarks", command->landmarks, "Landmarks per body: equal arc length, 0 at the top, clockwise")
-      ->check(CLI::Range(1, 100000))
+      ->check(in_range(1, 100000))
       ->capture_default_str();
   sub->add_option("--method", command->method, "Outline: ccd (thesis cross test, traced) or opencv (findContours)")
-      ->check(CLI::IsMember({"ccd", "opencv"}))
+      ->check(one_of({"ccd", "opencv"}))
       ->capture_default_str();
   sub->add_option("--jsonl", command->jsonl, "Per-frame landmarks (pixels) and points (metres) as JSON lines; default stdout");
   sub->add_option("--annotate", command->annotate_path, "Annotated images: a PNG folder, or a video (.avi/.mp4/.mkv)");

@@ -9,10 +9,12 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/detection_metrics.h"
 #include "bodyrec/io/ground_truth.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/pennfudan.h"
 #include "command.h"
 #include "common_options.h"
 #include "detection_job.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -98,7 +100,7 @@ struct EvalDetectCommand {
         j["ap50_low"] = interval.first;
         j["ap50_high"] = interval.second;
       }
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -119,15 +121,15 @@ void add(CLI::App& eval) {
       "Score on the Penn-Fudan photos in DIR (PNGImages/, PedMasks/) instead of --source and --gt");
   pennfudan->excludes(gt);
   sub->add_option("--split", command->split, "With --pennfudan: train, test or all")
-      ->check(CLI::IsMember({"train", "test", "all"}))
+      ->check(one_of({"train", "test", "all"}))
       ->needs(pennfudan)
       ->capture_default_str();
   sub->add_option("--iou", command->iou, "IoU a detection needs to match a ground-truth box")
-      ->check(CLI::Range(0.05, 1.0));
+      ->check(in_range(0.05, 1.0));
   sub->add_option("--bootstrap", command->bootstrap,
                   "Also give a 95 % interval of AP50 from this many bootstrap draws over the frames (0 = none; "
                   "meant for independent photos)")
-      ->check(CLI::Range(0, 100000));
+      ->check(in_range(0, 100000));
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (ap50, precision, recall, frames, ms_per_frame; ap50_low and "
                 "ap50_high with --bootstrap)");

@@ -9,9 +9,11 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/groups/group_selection.h"
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "enum_option.h"
 #include "group_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -110,11 +112,11 @@ struct EvalGroupsCommand {
     }
     if (!json) return;
     if (scenes.size() == 1) {
-      std::printf("%s\n", results[0].dump().c_str());
+      std::printf("%s\n", json_text(results[0]).c_str());
     } else {
       nlohmann::json j = {{"scenes", results}, {"mean_pair_f1", sum / n}};
       if (baseline) j["baseline_mean_pair_f1"] = baseline_sum / n;
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 
@@ -156,7 +158,7 @@ struct EvalGroupsCommand {
       for (const auto& f : r.folds)
         std::printf("    %-10s %s (%.4f)\n", f.scene.c_str(), f.fitted.c_str(), f.inner_f1);
     }
-    if (json) std::printf("%s\n", nlohmann::json({{"protocol", "nested-loso"}, {"methods", methods}}).dump().c_str());
+    if (json) std::printf("%s\n", json_text({{"protocol", "nested-loso"}, {"methods", methods}}).c_str());
   }
 };
 
@@ -183,10 +185,10 @@ void add(CLI::App& eval) {
                   "auto (built-in, never trained on this scene) or a model file from `bodyrec train-groups`; "
                   "its window, min-moving share and linkage apply unless given");
   sub->add_option("--max-distance", command->max_distance, "threshold method: median distance limit (m)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   sub->add_option("--max-speed-difference", command->max_speed_difference,
                   "threshold method: median speed difference limit (m/s)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   sub->add_flag("--baseline", command->baseline,
                 "Also score the plain rule (median distance <= 2 m and median speed difference <= 0.4 m/s over "
                 "the pair's common frames, no group consistency) on each scene");

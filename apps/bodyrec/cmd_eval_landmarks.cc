@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/landmarks/body_shape.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
@@ -39,7 +40,7 @@ struct EvalLandmarksCommand {
       }
     }
     print_landmark_scores(xml, s);
-    if (json) std::printf("%s\n", landmark_scores_json(s).dump().c_str());
+    if (json) std::printf("%s\n", json_text(landmark_scores_json(s)).c_str());
   }
 };
 

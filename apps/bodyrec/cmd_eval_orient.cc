@@ -8,9 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "orient_job.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -93,15 +95,14 @@ struct EvalOrientCommand {
       std::printf("\n");
     }
     if (json)
-      std::printf("%s\n", nlohmann::json({{"accuracy", accuracy},
+      std::printf("%s\n", json_text(nlohmann::json({{"accuracy", accuracy},
                                           {"within_one", within_one},
                                           {"scored", scored},
                                           {"excluded", excluded},
                                           {"no_view", no_view},
                                           {"yaw_mae_deg", mae},
                                           {"frames", frames},
-                                          {"ms_per_body", per_body}})
-                              .dump()
+                                          {"ms_per_body", per_body}}))
                               .c_str());
   }
 };
@@ -114,7 +115,7 @@ void add(CLI::App& app) {
   sub->add_flag("--face-oracle", command->options.pipeline.face_oracle,
                 "Face flag from the truth yaw (|yaw| < 90) instead of the face detector: measures the view rule alone");
   sub->add_option("--min-visible", command->min_visible, "Bodies with a smaller visible fraction are not scored")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(in_range(0.0, 1.0))
       ->capture_default_str();
   sub->add_option("--jsonl", command->jsonl, "Per scored body: truth and estimated yaw and view, as JSON lines");
   sub->add_flag("--json", command->json,

@@ -5,10 +5,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/reid/appearance_matcher.h"
 #include "bodyrec/reid/reid_eval.h"
 #include "command.h"
 #include "reid_dataset_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -44,7 +46,7 @@ struct EvalReidCommand {
                                 {"rank20", r.rank20}, {"map", r.map},         {"probes", r.probes},
                                 {"gallery", r.gallery}, {"ms_per_image", r.ms_per_image},
                                 {"same_accepted", r.same_accepted}, {"different_rejected", r.different_rejected}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -62,8 +64,8 @@ void add(CLI::App& eval) {
   add_reid_dataset_options(*sub, command->dataset);
   sub->add_option("--train-ids", command->eval.train_ids,
                   "Identities drawn per split for training (default: half of those in both cameras)")
-      ->check(CLI::NonNegativeNumber);
-  sub->add_option("--splits", command->eval.splits, "Random splits; figures are their means")->check(CLI::PositiveNumber)
+      ->check(non_negative());
+  sub->add_option("--splits", command->eval.splits, "Random splits; figures are their means")->check(positive())
       ->capture_default_str();
   sub->add_option("--seed", command->eval.seed, "Seed of the splits")->capture_default_str();
   sub->add_option("--matcher", command->matcher, "default | lomo-xqda | lomo | kaze")->capture_default_str();

@@ -6,6 +6,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/reid_stream_metrics.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/reid/memory_reid_store.h"
 #include "command.h"
@@ -83,7 +84,7 @@ struct EvalReidStreamCommand {
     const double coverage = visible > 0 ? static_cast<double>(s.frames) / visible : 0.0;
     if (in.colour) std::printf("coverage      %.4f (body-frames with a true person / people visible)\n", coverage);
     if (json)
-      std::printf("%s\n", nlohmann::json({{"accuracy", s.accuracy},
+      std::printf("%s\n", json_text(nlohmann::json({{"accuracy", s.accuracy},
                                           {"splits", s.splits},
                                           {"merges", s.merges},
                                           {"frames", frames},
@@ -95,8 +96,7 @@ struct EvalReidStreamCommand {
                                           {"colour_only", in.colour != nullptr},
                                           {"coverage", in.colour ? nlohmann::json(coverage) : nlohmann::json()},
                                           {"matcher", options.matcher},
-                                          {"match_views", to_string(match_views(options))}})
-                              .dump()
+                                          {"match_views", to_string(match_views(options))}}))
                               .c_str());
   }
 };

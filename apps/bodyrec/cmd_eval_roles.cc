@@ -7,10 +7,12 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/role_metrics.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/roles_csv.h"
 #include "command.h"
 #include "common_options.h"
 #include "groups_job.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -63,7 +65,7 @@ struct EvalRolesCommand {
                                 {"leader_correct", s.leader_correct}, {"member_correct", s.member_correct},
                                 {"frames", s.frames},           {"confusion", s.confusion},
                                 {"ms_per_frame", ms}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -80,7 +82,7 @@ void add(CLI::App& eval) {
   sub->add_option("--gt", command->gt, "Hand-labelled roles: CSV frame,x,y,w,h,role (leader|member|non-member)")
       ->required();
   sub->add_option("--iou", command->iou, "IoU a tracked box needs to match a labelled box")
-      ->check(CLI::Range(0.05, 1.0))->capture_default_str();
+      ->check(in_range(0.05, 1.0))->capture_default_str();
   sub->add_flag("--json", command->json, "End stdout with one JSON object (accuracy, boxes, matched, ...)");
   add_output_options(*sub, command->outputs);
   add_detector_options(*sub, command->detector);

@@ -7,11 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/rgbd/recording.h"
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
 #include "segment_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -60,7 +62,7 @@ struct EvalSegmentCommand {
     if (json) {
       const nlohmann::json j = {{"mean_iou", mean_iou}, {"persons", persons}, {"matched", found},
                                 {"extra", extra},       {"frames", frames},   {"ms_per_frame", per_frame}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -72,7 +74,7 @@ void add(CLI::App& app) {
   add_segment_options(*sub, command->seg);
   sub->add_option("--jsonl", command->jsonl, "Per-frame IoUs (true persons by label) and extra people as JSON lines");
   sub->add_option("--min-pixels", command->min_pixels, "True persons with fewer body-index pixels with depth are not scored")
-      ->check(CLI::Range(0, 1000000))
+      ->check(in_range(0, 1000000))
       ->capture_default_str();
   sub->add_option("--max-frames", command->max_frames, "Stop after this many frames; -1 = all");
   sub->add_flag("--json", command->json, "End stdout with one JSON object (mean_iou, persons, frames, ms_per_frame)");

@@ -6,9 +6,11 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/tracking_metrics.h"
 #include "bodyrec/io/ground_truth.h"
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "common_options.h"
 #include "tracking_job.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -63,7 +65,7 @@ struct EvalTrackCommand {
       const nlohmann::json j = {{"mota", s.mota},          {"motp", s.motp},   {"idf1", s.idf1},
                                 {"id_switches", s.id_switches}, {"fp", s.fp}, {"fn", s.fn},
                                 {"frames", s.frames},      {"ms_per_frame", ms}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -77,7 +79,7 @@ void add(CLI::App& eval) {
   sub->add_option("--gt", command->gt, "Ground truth with ids: PETS/CVML XML (.xml) or MOTChallenge gt.txt")
       ->required();
   sub->add_option("--iou", command->iou, "IoU a track box needs to match a ground-truth box")
-      ->check(CLI::Range(0.05, 1.0));
+      ->check(in_range(0.05, 1.0));
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (mota, motp, idf1, id_switches, fp, fn, frames, ms_per_frame)");
   add_output_options(*sub, command->outputs);

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/rgbd/green_screen.h"
 #include "command.h"
 
@@ -46,7 +47,7 @@ struct GreenScreenCommand {
                 frames, out.c_str(), per_frame);
     if (json) {
       const nlohmann::json j = {{"frames", frames}, {"cutouts", written}, {"ms_per_frame", per_frame}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };

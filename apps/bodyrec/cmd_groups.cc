@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/groups/group_events.h"
+#include "bodyrec/io/json_numbers.h"
 #include "command.h"
 #include "common_options.h"
 #include "event_options.h"
@@ -83,7 +84,7 @@ struct GroupsCommand {
           {"leader_handovers", handovers},
           {"sensor", events.sensor},
           {"events", delivery}};
-      std::printf("%s\n", summary.dump().c_str());
+      std::printf("%s\n", json_text(summary).c_str());
     }
   }
 };

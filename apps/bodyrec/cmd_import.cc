@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/rgbd/ntu_skeleton.h"
 #include "bodyrec/rgbd/pcd.h"
 #include "command.h"
@@ -40,7 +41,7 @@ void add(CLI::App& app) {
     if (ntu->json) {
       const nlohmann::json j = {{"frames", frames}, {"bodies", max_bodies}, {"depth_fit_rms_px", rms[0]},
                                 {"color_fit_rms_px", rms[1]}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   });
 
@@ -62,7 +63,7 @@ void add(CLI::App& app) {
     if (pcd->json) {
       const nlohmann::json j = {{"width", k.width}, {"height", k.height}, {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx},
                                 {"cy", k.cy}, {"valid_depth", valid}, {"fit_rms_px", rms}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   });
 }

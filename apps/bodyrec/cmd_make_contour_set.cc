@@ -3,6 +3,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/landmarks/contour_set.h"
 #include "command.h"
 
@@ -40,7 +41,7 @@ struct MakeContourSetCommand {
                                 {"skipped_border", skipped(ContourStatus::kTouchesBorder)},
                                 {"skipped_small", skipped(ContourStatus::kTooSmall)},
                                 {"skipped_empty", skipped(ContourStatus::kEmpty)}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };

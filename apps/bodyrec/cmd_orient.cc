@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "orient_job.h"
@@ -36,7 +37,6 @@ struct OrientCommand {
     check_input_given(input, options.live);
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run with its outputs whole
     std::unique_ptr<JsonlWriter> lines;
-    if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     std::map<std::string, int> per_view;
     int bodies = 0, none = 0;
@@ -66,6 +66,8 @@ struct OrientCommand {
         lines->write(line);
       }
       if (text) std::fflush(stdout);
+    }, [&] {  // the recording is open and checked: a refused one leaves no JSONL behind
+      if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     });
     const int frames = stats.frames;
     const double per_body = bodies ? ms / bodies : 0.0;
@@ -78,9 +80,9 @@ struct OrientCommand {
     if (json) {
       nlohmann::json views = nlohmann::json::object();
       for (const auto& [name, n] : per_view) views[name] = n;
-      std::printf("%s\n", nlohmann::json({{"frames", frames}, {"bodies", bodies}, {"no_view", none}, {"views", views},
-                                          {"ms_per_body", per_body}, {"dropped", stats.dropped}})
-                              .dump()
+      std::printf("%s\n", json_text(nlohmann::json({{"frames", frames}, {"bodies", bodies}, {"no_view", none},
+                                                     {"views", views}, {"ms_per_body", per_body},
+                                                     {"dropped", stats.dropped}}))
                               .c_str());
     }
   }

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "command.h"
 #include "event_options.h"
@@ -80,7 +81,7 @@ struct ReidCommand {
       std::printf("dropped %ld frames; event latency p50 %.1f ms, p95 %.1f ms%s\n", stats.dropped, p50, p95,
                   stats.stopped ? "; stopped by a signal" : "");
     if (json)
-      std::printf("%s\n", nlohmann::json({{"frames", frames},
+      std::printf("%s\n", json_text(nlohmann::json({{"frames", frames},
                                           {"body_frames", bodies},
                                           {"enrolled", counts["enrolled"]},
                                           {"recognised", counts["recognised"]},
@@ -97,8 +98,7 @@ struct ReidCommand {
                                           {"matcher", options.matcher},
                                           {"match_views", to_string(match_views(options))},
                                           {"sensor", events.sensor},
-                                          {"events", delivery}})
-                              .dump()
+                                          {"events", delivery}}))
                               .c_str());
   }
 };

@@ -8,6 +8,7 @@
 #include "bodyrec/report/gallery_users.h"
 #include "bodyrec/report/report.h"
 #include "command.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -99,7 +100,7 @@ void add(CLI::App& app) {
   sub->add_option("--gallery", command->gallery,
                   "Gallery (read-only; SQLite file or postgresql:// URI): a row per user with their 8 views, "
                   "first/last seen, events");
-  sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(CLI::Range(0, 12));
+  sub->add_option("--key-frames", command->key_frames, "How many key frames to show")->check(in_range(0, 12));
   sub->add_flag("--no-images", command->no_images, "Leave every image of a person out of the page");
   sub->add_option("--out", command->out, "The HTML file to write")->required();
   sub->callback([command] { command->run(); });

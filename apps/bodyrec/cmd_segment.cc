@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/rgbd/recording.h"
 #include "bodyrec/rgbd/segment.h"
@@ -67,7 +68,7 @@ struct SegmentCommand {
                                 {"background", segmenter.has_background()},
                                 {"ms_per_frame", per_frame},
                                 {"dropped", stats.dropped}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };

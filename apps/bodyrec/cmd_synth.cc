@@ -4,8 +4,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bodyrec/io/json_numbers.h"
+#include "bodyrec/io/progress.h"
 #include "bodyrec/rgbd/synth.h"
 #include "command.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -20,6 +23,7 @@ struct SynthCommand {
     options.check();
     Synthesizer synth(options);
     RecordingWriter writer(out, synth.meta());
+    const bool progress = progress_on_terminal(quiet);
     double render_ms = 0;
     int bodies = 0;
     for (int i = 0; i < options.frames; ++i) {
@@ -28,9 +32,9 @@ struct SynthCommand {
       render_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       bodies += static_cast<int>(f.bodies.size());
       writer.write(f);
-      if (!quiet && (i + 1) % 30 == 0) std::fprintf(stderr, "\rsynth: %d/%d frames", i + 1, options.frames);
+      if (progress && (i + 1) % 30 == 0) std::fprintf(stderr, "\rsynth: %d/%d frames", i + 1, options.frames);
     }
-    if (!quiet) std::fprintf(stderr, "\n");
+    if (progress && options.frames >= 30) std::fprintf(stderr, "\n");
     const double ms = render_ms / options.frames;
     std::printf("wrote %s: %d frames, %s, %d people, seed %llu; %.2f bodies per frame; render %.2f ms per frame\n",
                 out.c_str(), options.frames, options.scenario.c_str(), options.people,
@@ -38,7 +42,7 @@ struct SynthCommand {
     if (json) {
       const nlohmann::json j = {{"frames", options.frames}, {"people", options.people}, {"seed", options.seed},
                                 {"scenario", options.scenario}, {"bodies", bodies}, {"render_ms_per_frame", ms}};
-      std::printf("%s\n", j.dump().c_str());
+      std::printf("%s\n", json_text(j).c_str());
     }
   }
 };
@@ -55,16 +59,16 @@ void add(CLI::App& app) {
       sub->add_option("--frames", command->options.frames,
                       "Frames to render (30 per second; the scenario spans them all). Default 150; for visits "
                       "450 with 1-4 people, 540 with 5, 630 with 6, 710 with 7, 800 with 8 (visits of about 5 s)")
-          ->check(CLI::PositiveNumber);
+          ->check(positive());
   sub->add_option("--scenario", command->options.scenario,
                   "walk-turn, cross, group, reenter, or visits (everyone comes, turns round, leaves and comes back "
                   "from the other side, 2-4 people in view at once)")
-      ->check(CLI::IsMember(synth_scenarios()));
+      ->check(one_of(synth_scenarios()));
   sub->add_option("--out", command->out, "Recording directory to create (must not exist or be empty)")->required();
   sub->add_option("--color-width", command->options.color_width, "Colour image width");
   sub->add_option("--color-height", command->options.color_height, "Colour image height");
   sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people, seed, scenario, bodies, render_ms_per_frame)");
-  sub->add_flag("-q,--quiet", command->quiet, "No progress on stderr");
+  sub->add_flag("-q,--quiet", command->quiet, "No progress on stderr (drawn only when stderr is a terminal)");
   sub->footer(
       "Examples:\n  bodyrec synth --people 2 --seed 7 --frames 150 --scenario cross --out rec_synth\n"
       "  bodyrec synth --people 8 --seed 1 --scenario visits --out rec_visits   # 800 frames");

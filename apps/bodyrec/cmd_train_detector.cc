@@ -6,6 +6,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/detection/fhog_training.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
 #include "command.h"
 #include "output_check.h"
@@ -57,7 +58,7 @@ struct TrainDetectorCommand {
       j["test_ap"] = t.average_precision;
     }
     std::printf("wrote         %s%s\n", out.c_str(), options.upsample ? " (detect with --fhog-upsample 2)" : "");
-    if (json) std::printf("%s\n", j.dump().c_str());
+    if (json) std::printf("%s\n", json_text(j).c_str());
   }
 };
 

@@ -13,6 +13,7 @@
 #include "command.h"
 #include "enum_option.h"
 #include "group_options.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -95,7 +96,7 @@ void add(CLI::App& app) {
                                                                      {"distance-speed", TrainFeatures::kDistanceSpeed}},
                   "pair-model: all features or only median distance and speed difference", "all");
   sub->add_option("--l2", command->l2, "pair-model: L2 penalties to choose from (on the standardised weights)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   add_group_options(*sub, command->options);
   sub->callback([command] { command->run(); });
 }

@@ -8,6 +8,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/openblas.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "bodyrec/landmarks/shape_training.h"
@@ -70,7 +71,7 @@ struct TrainShapeCommand {
     const auto bytes = std::filesystem::file_size(out);
     std::printf("wrote         %s (%.1f MB)\n", out.c_str(), static_cast<double>(bytes) / 1e6);
     j["model_bytes"] = bytes;
-    if (json) std::printf("%s\n", j.dump().c_str());
+    if (json) std::printf("%s\n", json_text(j).c_str());
   }
 
   // --net-size WxH and --seed (text for dlib's trees, an integer for the network's augmentation draws).

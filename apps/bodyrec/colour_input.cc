@@ -5,6 +5,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/detection/foreground_detector.h"
 #include "enum_option.h"
+#include "option_checks.h"
 #include "shape_body_mask.h"
 
 namespace bodyrec::cli {
@@ -38,7 +39,7 @@ void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
   sub.add_option("--background-history", o.history,
                  "Frames of the background model (foreground detector and masks): someone still this long fades "
                  "into the background")
-      ->check(CLI::Range(10, 100000))
+      ->check(in_range(10, 100000))
       ->capture_default_str();
   const std::vector<CLI::Option*> all = sub.get_options();
   for (std::size_t i = before; i < all.size(); ++i) all[i]->group(group);

@@ -4,6 +4,7 @@
 #include "bodyrec/detection/dpm_people_detector.h"
 #include "bodyrec/detection/fhog_detector.h"
 #include "bodyrec/detection/hog_people_detector.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -16,7 +17,7 @@ void add_source_options(CLI::App& sub, SourceOptions& o, bool source_flag) {
   sub.add_option("--camera", o.camera, "Read a live camera (V4L2 index) instead of a file; -1 = none");
   sub.add_option("--start", o.start, "First frame index to process");
   sub.add_option("--max-frames", o.max_frames, "Process at most this many frames; -1 = all");
-  sub.add_option("--every", o.every, "Process every Nth frame")->check(CLI::PositiveNumber);
+  sub.add_option("--every", o.every, "Process every Nth frame")->check(positive());
 }
 
 void add_output_options(CLI::App& sub, OutputOptions& o) {
@@ -34,14 +35,14 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
                  "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
                  "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
                  "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)")
-      ->check(CLI::IsMember({"auto", "default", "photo", "thesis", "opencv"}))
+      ->check(one_of({"auto", "default", "photo", "thesis", "opencv"}))
       ->capture_default_str();
   sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
   const std::string p = " (default: the preset's value)";
   o.o_hog_model = sub.add_option("--hog-model", o.hog_model, "HOG SVM: 'default' (64x128) or 'daimler' (48x96)")
-                      ->check(CLI::IsMember({"default", "daimler"}));
+                      ->check(one_of({"default", "daimler"}));
   o.o_hit = sub.add_option("--hit-threshold", o.hit_threshold, "HOG: SVM score threshold" + p);
   o.o_stride = sub.add_option("--win-stride", o.win_stride, "HOG: window stride in pixels" + p);
   o.o_padding = sub.add_option("--padding", o.padding, "HOG: padding in pixels" + p);
@@ -59,7 +60,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
     opt->default_str("preset");
   sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
   sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
-      ->check(CLI::IsMember({"on", "off", "preset"}));
+      ->check(one_of({"on", "off", "preset"}));
   sub.add_option("--nms-iou", o.nms_iou, "Non-maximum suppression IoU threshold");
   sub.add_option("--local-margin", o.local_region_margin,
                  "HOG search around a track (frames between full detections): the window grows by this "
@@ -70,6 +71,10 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
 }
 
 std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool consecutive_frames) {
+  // The library reads an empty rectangle as "no region", the whole frame: an empty --roi is a mistake.
+  if (o.roi.size() == 4 && (o.roi[2] <= 0 || o.roi[3] <= 0))
+    throw UsageError("--roi: " + std::to_string(o.roi[2]) + "x" + std::to_string(o.roi[3]) +
+                     " is not a region (width and height must be positive)");
   if (!o.model_file.empty()) {
     FhogOptions f;
     f.model_path = o.model_file;

@@ -8,6 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "option_checks.h"
+
 namespace bodyrec::cli {
 
 // Adds `name` taking one of `choices` (text, value) and storing the value in `target` (an enum, or a
@@ -30,7 +32,7 @@ CLI::Option* add_enum_option(CLI::App& sub, const std::string& name, Target& tar
           if (t == text) target = value;
       },
       help);
-  option->check(CLI::IsMember(names))->type_name(type)->default_str(default_text);
+  option->check(one_of(names))->type_name(type)->default_str(default_text);
   return option;
 }
 

@@ -7,6 +7,7 @@
 #include <ctime>
 
 #include "bodyrec/core/error.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -48,11 +49,11 @@ void add_event_options(CLI::App& sub, EventCliOptions& o) {
       ->default_str("bodyrec-<sensor-id>-<command>.spool");
   sub.add_option("--events-spool-max", o.spool_max,
                  "Undelivered events the spool keeps; newer ones are dropped and counted")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   sub.add_option("--events-wait", o.wait_s,
                  "At the end, seconds to wait for undelivered events while the broker answers")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
 }
 

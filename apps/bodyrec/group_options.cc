@@ -3,6 +3,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/parse_number.h"
 #include "enum_option.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -34,15 +35,15 @@ void add_group_options(CLI::App& sub, GroupCliOptions& options) {
       sub.add_option("--velocity-span", options.groups.velocity_span_s,
                      "Velocity from displacement over at least N seconds (default: the model's; train-groups chooses it; the "
                      "plain rule: 0.4)")
-          ->check(CLI::PositiveNumber);
+          ->check(positive());
   sub.add_option("--half-life", options.groups.evidence_half_life_s,
                  "Pair evidence fades with this half-life in seconds (0: mean over all common time)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   options.min_moving_option =
       sub.add_option("--min-moving", options.groups.min_moving_fraction,
                      "Windows where the two walk for less than this share of the time add no evidence (0: all "
                      "count; default: the model's; train-groups chooses it)")
-          ->check(CLI::Range(0.0, 1.0));
+          ->check(in_range(0.0, 1.0));
   options.linkage_option = add_enum_option(
       sub, "--linkage", options.linkage,
       std::vector<std::pair<std::string, GroupLinkage>>{
@@ -52,7 +53,7 @@ void add_group_options(CLI::App& sub, GroupCliOptions& options) {
       "the model's");
   sub.add_option("--seconds-per-frame", options.seconds_per_frame,
                  "obsmat frame period; default: estimated from its velocities")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
 }
 
 }  // namespace bodyrec::cli

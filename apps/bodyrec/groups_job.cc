@@ -11,6 +11,7 @@
 #include "bodyrec/io/sinks.h"
 #include "enum_option.h"
 #include "run_sinks.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -126,7 +127,7 @@ void add_groups_options(CLI::App& sub, GroupsJobOptions& o) {
                  "Tsai camera calibration XML (PETS layout, e.g. View_001.xml) for the ground plane");
   sub.add_option("--fps", o.fps,
                  "Frame rate for times and speeds (0 = the source's; vtest.avi says 10 but was recorded at 7)")
-      ->check(CLI::NonNegativeNumber)->capture_default_str();
+      ->check(non_negative())->capture_default_str();
   sub.add_option("--pixels-per-metre", p.pixels_per_metre,
                  "Without a ground plane: image scale (0 = from the first boxes, a person being 1.7 m tall)")
       ->capture_default_str();

@@ -9,6 +9,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/core/openblas.h"
 #include "command.h"
+#include "option_checks.h"
 #include "option_error_text.h"
 
 namespace {
@@ -41,12 +42,14 @@ int main(int argc, char** argv) {
   for (const auto& command : bodyrec::cli::registered_commands()) {
     command.add(command.parent == "eval" ? *eval : app);
   }
+  bodyrec::cli::check_numbers_everywhere(app);  // NaN, infinities and non-numbers: usage errors everywhere
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int rc = app.exit(e);  // prints help, version or the usage error
-    return rc == 0 ? 0 : static_cast<int>(bodyrec::ExitCode::kUsage);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "bodyrec: error: " << bodyrec::cli::usage_message(e, app) << "\n";
+    return static_cast<int>(bodyrec::ExitCode::kUsage);
   } catch (const bodyrec::OptionError& e) {
     std::cerr << "bodyrec: error: " << bodyrec::cli::option_error_text(e, app) << "\n";
     return static_cast<int>(e.code());

@@ -74,10 +74,12 @@ void check_orient_options(const OrientCliOptions& options) {
 }
 
 FrameLoopStats run_orientation(const std::string& input, const OrientCliOptions& options,
-                               const std::function<void(const OrientFrame&)>& sink) {
+                               const std::function<void(const OrientFrame&)>& sink,
+                               const std::function<void()>& opened) {
   check_orient_options(options);
   OrientSource source(input, options.live);
   OrientPipeline pipeline(source.meta(), options.pipeline, source.segmenter(options), source.name());
+  if (opened) opened();
   return run_frame_loop<RgbdFrame>([&source](RgbdFrame& f) { return source.read(f); },
                                    [](const RgbdFrame& f) { return f.time_s; },
                                    loop_options(options.live, options.max_frames),

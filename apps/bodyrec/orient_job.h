@@ -58,9 +58,12 @@ class OrientSource {
 void check_orient_options(const OrientCliOptions& options);
 
 // Runs over every frame (up to max_frames; a live source until a signal) and calls `sink` per frame.
+// `opened` (when given) is called once the input is open and checked, before the first frame: the place
+// to create output files, so that an input refused when it opens leaves none behind.
 // InputError/UsageError as the readers and options say; `sink` exceptions propagate.
 FrameLoopStats run_orientation(const std::string& input, const OrientCliOptions& options,
-                               const std::function<void(const OrientFrame&)>& sink);
+                               const std::function<void(const OrientFrame&)>& sink,
+                               const std::function<void()>& opened = {});
 
 // Whether the input is an NTU RGB+D .skeleton file (else a recording directory).
 bool is_skeleton_file(const std::string& input);

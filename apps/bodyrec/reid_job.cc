@@ -4,6 +4,7 @@
 
 #include "bodyrec/core/error.h"
 #include "enum_option.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -24,7 +25,7 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option, boo
   sub.add_option("--max-events-per-user", o.max_events_per_user,
                  "The gallery keeps the newest this many events per user (enrolled, recognised, view added, left); "
                  "older ones are erased, so the file stays bounded however often people come back. 0 = keep all")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   sub.add_option("--decide-after", o.reid.decide_after,
                  "Scans a new body collects before it is recognised or enrolled (a sure recognition, both of its "
@@ -37,7 +38,7 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option, boo
                  "user whose stature is known, so that people who dress alike are not taken for each other (the "
                  "--max-wait decision comes first when sooner). Default: 30, and 0 when the bodies come from "
                  "bodyrec's own depth segmentation, whose statures are often refused (people side by side)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->default_str("30, depth: 0");
   sub.add_option("--min-quality", o.reid.min_quality, "Partial scans below this quality (0..1) are not used")
       ->capture_default_str();

@@ -3,6 +3,7 @@
 #include <thread>
 
 #include "bodyrec/core/error.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -24,10 +25,10 @@ void add_live_options(CLI::App& sub, LiveCliOptions& o, bool realtime, bool vide
                      " at its own frame rate through the live path (frames dropped when processing falls "
                      "behind, counted as \"dropped\")");
     sub.add_option("--queue", o.queue, "Live sources: frames waiting for processing before the oldest is dropped")
-        ->check(CLI::Range(1, 8))
+        ->check(in_range(1, 8))
         ->capture_default_str();
   }
-  sub.add_option("--test-delay-ms", o.test_delay_ms)->group("")->check(CLI::NonNegativeNumber);
+  sub.add_option("--test-delay-ms", o.test_delay_ms)->group("")->check(non_negative());
 }
 
 void check_input_given(const std::string& path, const LiveCliOptions& live, std::optional<int> camera) {

@@ -1,22 +1,23 @@
 #include "segment_options.h"
 
 #include "bodyrec/core/error.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
 void add_segment_options(CLI::App& sub, SegmentCliOptions& options) {
   sub.add_option("--background", options.background,
                  "Background depth model: auto (learn it when the recording has >= 10 frames), on, off")
-      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->check(one_of({"auto", "on", "off"}))
       ->capture_default_str();
   sub.add_option("--background-samples", options.background_samples, "Frames (spread over the recording) to learn it from")
-      ->check(CLI::Range(1, 100000))
+      ->check(in_range(1, 100000))
       ->capture_default_str();
   sub.add_option("--min-height", options.segment.min_height_m, "Lowest person top above the ground, metres")
-      ->check(CLI::Range(0.3, 3.0))
+      ->check(in_range(0.3, 3.0))
       ->capture_default_str();
   sub.add_option("--max-height", options.segment.max_height_m, "Highest person top above the ground, metres")
-      ->check(CLI::Range(0.5, 3.5))
+      ->check(in_range(0.5, 3.5))
       ->capture_default_str();
 }
 

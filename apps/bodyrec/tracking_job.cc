@@ -9,6 +9,7 @@
 #include "bodyrec/io/progress.h"
 #include "enum_option.h"
 #include "run_sinks.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
@@ -16,7 +17,7 @@ std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions&
   TrackerOptions& t = o.tracker;
   sub.add_option("--detect-every", o.detect_every,
                  "Run the full detector on every Nth frame (see --between for the frames in between)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(positive())->capture_default_str();
   add_enum_option(sub, "--between", o.between,
                   std::vector<std::pair<std::string, BetweenDetections>>{{"local", BetweenDetections::kLocal},
                                                                          {"predict", BetweenDetections::kPredict}},

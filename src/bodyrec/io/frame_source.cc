@@ -12,6 +12,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/image_file.h"
+#include "bodyrec/io/image_header.h"
 
 namespace fs = std::filesystem;
 
@@ -48,6 +49,11 @@ class ImageListSource : public FrameSource {
   ImageListSource(std::vector<std::string> files, std::string description, const SourceOptions& o)
       : files_(std::move(files)), description_(std::move(description)), selection_(o) {
     next_ = o.start;
+    // The first frame's size from its header, before the command creates any output; the others are
+    // checked the same way as they are read.
+    if (next_ < static_cast<int>(files_.size()))
+      if (const auto size = image_file_header_size(files_[next_]))
+        check_frame_pixels(files_[next_], size->width, size->height);
   }
 
   bool read(Frame& frame) override {
@@ -87,16 +93,30 @@ class CaptureSource : public FrameSource {
         is_file_(is_file) {
     const double f = capture_.get(cv::CAP_PROP_FPS);
     if (f > 0 && f < 1000) fps_ = f;
+    check_frame_pixels(description_, static_cast<int64_t>(capture_.get(cv::CAP_PROP_FRAME_WIDTH)),
+                       static_cast<int64_t>(capture_.get(cv::CAP_PROP_FRAME_HEIGHT)));
     if (is_file_) {
       const double n = capture_.get(cv::CAP_PROP_FRAME_COUNT);
       if (n > 0) total_ = static_cast<int>(n);
+      // A video without one decodable frame is refused like an empty file, before any output exists.
+      cv::Mat image;
+      if (!capture_.read(image) || image.empty()) throw InputError("video has no decodable frame: " + description_);
+      check_frame_pixels(description_, image.cols, image.rows);
+      first_ = std::move(image);
     }
   }
 
   bool read(Frame& frame) override {
     cv::Mat image;
     while (!selection_.done()) {
-      const bool grabbed = selection_.wanted(next_) ? capture_.read(image) : capture_.grab();
+      bool grabbed;
+      if (next_ == 0 && !first_.empty()) {
+        grabbed = true;
+        image = first_;
+        first_.release();
+      } else {
+        grabbed = selection_.wanted(next_) ? capture_.read(image) : capture_.grab();
+      }
       const int index = next_++;
       if (!grabbed) {
         // A file that stops well before its announced length is truncated or corrupt, not finished.
@@ -127,6 +147,7 @@ class CaptureSource : public FrameSource {
   int next_ = 0;
   std::optional<double> fps_;
   std::optional<int> total_;
+  cv::Mat first_;  // a file's frame 0, read when it was opened
 };
 
 std::unique_ptr<FrameSource> open_video(const SourceOptions& o) {

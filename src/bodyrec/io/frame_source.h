@@ -43,7 +43,9 @@ class FrameSource {
 };
 
 // Opens a source. Throws InputError (naming the path) when it is missing, unreadable, of an unknown
-// kind, an empty directory or a glob matching nothing; UsageError on bad options.
+// kind, an empty directory or a glob matching nothing, a video without one decodable frame (frame 0 is
+// decoded here), or when its frames are above the pixel limit (image_header.h: the first image's header,
+// the capture's size); UsageError on bad options. Later images above the limit are InputErrors of read().
 std::unique_ptr<FrameSource> open_source(const SourceOptions& options);
 
 // The image files `files` in the given order as one source (frame i = files[i]), with --start, --every and

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/image_header.h"
 
 namespace bodyrec {
 namespace {
@@ -54,6 +55,10 @@ cv::Mat read_image_file(const std::string& path, int flags) {
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": a directory, not an image");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
+  // From the header, before the file (a 100 MP BMP is 300 MB) is read or decoded.
+  if (const auto size = image_header_size(in)) check_frame_pixels(path, size->width, size->height);
+  in.clear();
+  in.seekg(0);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
   if (bytes.empty()) throw InputError(path + ": empty file");
@@ -66,6 +71,7 @@ cv::Mat read_image_file(const std::string& path, int flags) {
     image.release();
   }
   if (image.empty()) throw InputError(path + ": cannot decode image");
+  check_frame_pixels(path, image.cols, image.rows);  // a format whose header is not read above
   return image;
 }
 

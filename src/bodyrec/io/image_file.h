@@ -12,7 +12,8 @@ namespace bodyrec {
 
 // Decodes `path` with cv::imdecode `flags` (cv::IMREAD_COLOR, cv::IMREAD_UNCHANGED, ...). Throws
 // InputError "PATH: missing", "PATH: a directory, not an image", "PATH: cannot read (reason)",
-// "PATH: empty file", "PATH: truncated PNG|JPEG file (...)" or "PATH: cannot decode image".
+// "PATH: empty file", "PATH: truncated PNG|JPEG file (...)", "PATH: cannot decode image" or, from the
+// header before decoding (image_header.h), "PATH: WxH pixels (N MP) exceeds the 64 MP limit per frame".
 cv::Mat read_image_file(const std::string& path, int flags);
 
 // The reason `bytes` is an incomplete PNG or JPEG file ("" when complete or another format): a PNG must

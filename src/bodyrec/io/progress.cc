@@ -7,8 +7,10 @@
 
 namespace bodyrec {
 
+bool progress_on_terminal(bool quiet) { return !quiet && isatty(STDERR_FILENO); }
+
 Progress::Progress(std::optional<int> total, bool quiet)
-    : total_(total), enabled_(!quiet && isatty(STDERR_FILENO)),
+    : total_(total), enabled_(progress_on_terminal(quiet)),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 Progress::~Progress() {

@@ -7,6 +7,10 @@
 
 namespace bodyrec {
 
+// True when progress should be drawn: not asked to be quiet, and stderr is a terminal (in a file or a
+// pipe, '\r' redraws would pile up as junk lines).
+bool progress_on_terminal(bool quiet);
+
 class Progress {
  public:
   Progress(std::optional<int> total, bool quiet);

@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 
 namespace fs = std::filesystem;
 
@@ -41,7 +42,7 @@ JsonlWriter::JsonlWriter(const std::string& path) : path_(path) {
 
 void JsonlWriter::write(const nlohmann::json& object) {
   std::ostream& out = file_ ? static_cast<std::ostream&>(*file_) : std::cout;
-  out << object.dump() << '\n';
+  out << json_text(object) << '\n';
   out.flush();
   if (!out) throw ProcessingError("cannot write to " + (file_ ? path_ : std::string("stdout")));
 }

@@ -1,5 +1,6 @@
 #include "bodyrec/report/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -83,8 +84,11 @@ Section header(const ReportInput& input) {
   } else {
     for (const auto& r : run.reid)
       for (const auto& b : r.bodies) tracks.insert(b.track);
-    first = run.reid.front().time, last = run.reid.back().time;
-    first_frame = run.reid.front().frame, last_frame = run.reid.back().frame;
+    // The end row (finish()'s events) repeats the last time one frame later: the span is the frames'.
+    const auto last_row = std::find_if(run.reid.rbegin(), run.reid.rend(), [](const ReidFrameRow& r) { return !r.end; });
+    const ReidFrameRow& final_row = last_row == run.reid.rend() ? run.reid.back() : *last_row;
+    first = run.reid.front().time, last = final_row.time;
+    first_frame = run.reid.front().frame, last_frame = final_row.frame;
   }
   Section s{"header", "", ""};
   auto item = [](const std::string& k, const std::string& v) {

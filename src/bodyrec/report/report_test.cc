@@ -262,6 +262,27 @@ TEST(ReportParse, ReadsGroupsAndReidRows) {
   EXPECT_EQ(*r.reid[1].events[0].score, 12.5);
 }
 
+// `bodyrec reid` ends its JSONL with finish()'s events on a line marked "end": true, one frame after the
+// last: a closing row, not a frame.
+TEST(ReportParse, TheEndRowOfAReidRunIsNotAFrame) {
+  std::string text;
+  for (int f = 0; f < 3; ++f)
+    text += R"({"frame":)" + std::to_string(f) + R"(,"time":)" + std::to_string(f * 0.5) +
+            R"(,"bodies":[{"track":1,"user":2,"view":"F","box":[0,0,1,1]}],"events":[]})" + "\n";
+  text += R"({"frame":3,"time":1.0,"bodies":[],"events":[{"kind":"left","user":2,"track":1}],"end":true})";
+  std::istringstream in(text);
+  ReportInput input;
+  input.run = parse_run(in, "r.jsonl");
+  ASSERT_EQ(input.run.reid.size(), 4u);
+  EXPECT_TRUE(input.run.reid[3].end);
+  EXPECT_FALSE(input.run.reid[2].end);
+  EXPECT_EQ(input.run.frame_count(), 3);
+  const std::string header = build_sections(input).front().html;
+  EXPECT_NE(header.find("frames <b>3 (0–2, 1.0 s)</b>"), std::string::npos) << header;
+  std::istringstream bad(R"({"frame":0,"bodies":[],"end":"yes"})");
+  EXPECT_EQ(input_error([&] { parse_run(bad, "r.jsonl"); }), "r.jsonl:1: field 'end' is not true or false");
+}
+
 TEST(ReportParse, BrokenRunsNameFileAndLine) {
   auto parse = [](const std::string& text) {
     return input_error([&] {

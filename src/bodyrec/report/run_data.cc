@@ -1,5 +1,6 @@
 #include "bodyrec/report/run_data.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -119,6 +120,10 @@ ReidFrameRow reid_row(const json& row, const Where& w) {
       r.events.push_back(event);
     }
   r.ms = w.ms(row);
+  if (row.contains("end")) {
+    if (!row["end"].is_boolean()) w.fail("field 'end' is not true or false");
+    r.end = row["end"].get<bool>();
+  }
   return r;
 }
 
@@ -135,7 +140,8 @@ std::string slurp(const std::string& path) {
 const char* to_string(RunKind kind) { return kind == RunKind::kGroups ? "groups" : "re-identification"; }
 
 int RunData::frame_count() const {
-  return static_cast<int>(kind == RunKind::kGroups ? groups.size() : reid.size());
+  if (kind == RunKind::kGroups) return static_cast<int>(groups.size());
+  return static_cast<int>(std::count_if(reid.begin(), reid.end(), [](const ReidFrameRow& r) { return !r.end; }));
 }
 
 RunData parse_run(std::istream& in, const std::string& name) {

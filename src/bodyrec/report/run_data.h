@@ -64,6 +64,7 @@ struct ReidFrameRow {
   std::vector<ReidBody> bodies;
   std::vector<ReidEvent> events;
   StageTimes ms;
+  bool end = false;  // "end": true, the line after the last frame with the run's closing events: not a frame
 };
 
 enum class RunKind { kGroups, kReid };
@@ -74,7 +75,7 @@ struct RunData {
   RunKind kind = RunKind::kGroups;
   std::vector<GroupsFrameRow> groups;  // when kind == kGroups
   std::vector<ReidFrameRow> reid;      // when kind == kReid
-  int frame_count() const;
+  int frame_count() const;  // frames processed: the rows, less a re-identification run's end row
 };
 
 // Reads a run's JSON lines. The kind comes from the rows ("people" = groups, "bodies" = re-id).

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/image_header.h"
 #include "bodyrec/rgbd/recording.h"
 
 namespace bodyrec {
@@ -74,6 +75,8 @@ Intrinsics intrinsics_from(const json& j, const At& at) {
   Intrinsics k;
   k.width = static_cast<int>(integer(member(j, "width", at), at.key("width"), 1, 100000));
   k.height = static_cast<int>(integer(member(j, "height", at), at.key("height"), 1, 100000));
+  // Refused here, when the recording opens, rather than frame by frame after the outputs exist.
+  if (const std::string problem = frame_pixels_problem(k.width, k.height); !problem.empty()) at.fail(problem);
   k.fx = number(member(j, "fx", at), at.key("fx"));
   k.fy = number(member(j, "fy", at), at.key("fy"));
   k.cx = number(member(j, "cx", at), at.key("cx"));
