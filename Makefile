@@ -6,27 +6,36 @@ VTEST    ?= /usr/share/doc/opencv-doc/examples/data/vtest.avi
 CMAKE_FLAGS ?=
 BIN      := $(BUILD)/bin/bodyrec
 
-.PHONY: all deps configure build run test test-asan test-data bench clean fuzz
+.PHONY: all deps configure build program run test test-asan test-data bench clean fuzz
 
 all: build
 
 deps:
 	@scripts/install-deps
 
+# Ninja when present (scripts/install-deps installs it; looked up after deps ran); ccache is picked up by
+# CMakeLists.txt.
+GENERATOR = $$(command -v ninja >/dev/null 2>&1 && echo -G Ninja)
+
 $(BUILD)/CMakeCache.txt:
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DBODYREC_WERROR=ON $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release -DBODYREC_WERROR=ON $(CMAKE_FLAGS)
 
 configure: $(BUILD)/CMakeCache.txt
 
+# Everything: the program, the tests and the benchmarks.
 build: deps configure
 	cmake --build $(BUILD) -j $(JOBS)
+
+# The program alone (what `make run` needs).
+program: deps configure
+	cmake --build $(BUILD) -j $(JOBS) --target bodyrec
 
 # The main job on the built-in default input (vtest.avi from opencv-doc): the whole groups pipeline.
 # vtest.avi was recorded at 7 frames/s (its header says 10); the PETS calibration, when the datasets are
 # beside the repository, puts distances and speeds on the ground plane.
 DATA     ?= $(or $(BODYREC_DATA),../shared/datasets)
 CALIB    := $(wildcard $(DATA)/pets09_s2l1/View_001.xml)
-run: build
+run: program
 	@mkdir -p $(OUT)
 	$(BIN) groups $(VTEST) --fps 7 $(if $(CALIB),--calibration $(CALIB)) --jsonl $(OUT)/groups.jsonl \
 	    --mot $(OUT)/groups.mot.txt --annotate $(OUT)/groups.avi
@@ -39,15 +48,20 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 # The whole suite again, built with AddressSanitizer + UndefinedBehaviorSanitizer (own build folder; any
-# report fails the test that triggered it). ASAN_CTEST_ARGS selects tests, e.g. ASAN_CTEST_ARGS="-LE data".
+# report fails the test that triggered it). ASAN_CTEST_ARGS selects tests, e.g. ASAN_CTEST_ARGS="-LE data";
+# ASAN_EXCLUDE is a regular expression of tests to leave out (ctest -E). ASAN_TARGET=library_tests builds and
+# runs only the library's own tests and the fuzz-input replay (what CI does, to stay within its budget).
 ASAN_BUILD ?= build-asan
-ASAN_CTEST_ARGS ?=
+ASAN_TARGET ?= all
+ASAN_CTEST_ARGS ?= $(if $(filter library_tests,$(ASAN_TARGET)),-L unit)
+ASAN_EXCLUDE ?=
 test-asan: deps
-	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYREC_WERROR=ON -DBODYREC_SANITIZE=ON \
+	cmake -S . -B $(ASAN_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBODYREC_WERROR=ON -DBODYREC_SANITIZE=ON \
 	    -DBODYREC_BUILD_BENCH=OFF $(CMAKE_FLAGS)
-	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(ASAN_TARGET)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
-	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS)
+	    UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 ctest --output-on-failure -j $(JOBS) $(ASAN_CTEST_ARGS) \
+	    $(if $(ASAN_EXCLUDE),-E '$(ASAN_EXCLUDE)')
 
 # libFuzzer + ASan + UBSan on every parser of outside input (clang; own build folder): each target runs
 # FUZZ_SECONDS; crashes land in build-fuzz/crashes/<target>/ (see scripts/fuzz and docs/reliability.md).
@@ -60,7 +74,8 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	scripts/fuzz --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
-bench: build
+bench: deps configure
+	cmake --build $(BUILD) -j $(JOBS)
 	@for b in $(BUILD)/bin/*_bench; do echo "== $$b"; $$b --benchmark_counters_tabular=true || exit 1; done
 
 clean:

@@ -14,7 +14,7 @@
 
 #include "bench_support.h"
 #include "bodyrec/detection/hog_people_detector.h"
-#include "bodyrec/groups/group_pipeline.h"
+#include "bodyrec/groups/group_stages.h"
 #include "bodyrec/io/ground_plane.h"
 #include "bodyrec/tracking/detect_and_track.h"
 
@@ -42,9 +42,9 @@ void BM_GroupsPipeline(benchmark::State& state) {
   const auto* loaded = frames_or_skip(state);
   if (!loaded) return;
   const auto& frames = *loaded;
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   bodyrec::DetectAndTrack tracking(detector, {});
-  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  bodyrec::GroupStages pipeline({}, pets_ground());
   int n = 0;
   double leaders = 0;
   for (auto _ : state) {
@@ -60,11 +60,11 @@ void BM_GroupStagesOnly(benchmark::State& state) {
   const auto* loaded = frames_or_skip(state);
   if (!loaded) return;
   const auto& frames = *loaded;
-  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+  bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
   bodyrec::DetectAndTrack tracking(detector, {});
   std::vector<std::vector<bodyrec::TrackedPerson>> tracks;
   for (size_t i = 0; i < frames.size(); ++i) tracks.push_back(tracking.step(static_cast<int>(i), frames[i]));
-  bodyrec::GroupPipeline pipeline({}, pets_ground());
+  bodyrec::GroupStages pipeline({}, pets_ground());
   int n = 0;
   for (auto _ : state) {
     const size_t i = static_cast<size_t>(n) % frames.size();
@@ -80,9 +80,9 @@ void BM_GroupsSoak(benchmark::State& state) {
   if (!loaded) return;
   const auto& frames = *loaded;
   for (auto _ : state) {
-    bodyrec::HogPeopleDetector detector(bodyrec::hog_preset("default"));
+    bodyrec::HogPeopleDetector detector(bodyrec::hog_preset(bodyrec::HogPreset::kDefault));
     bodyrec::DetectAndTrack tracking(detector, {});
-    bodyrec::GroupPipeline pipeline({}, pets_ground());
+    bodyrec::GroupStages pipeline({}, pets_ground());
     double warm = 0;
     for (int n = 0; n < state.range(0); ++n) {
       const cv::Mat& frame = frames[static_cast<size_t>(n) % frames.size()];

@@ -106,7 +106,7 @@ void detect_and_fit(benchmark::State& state, bodyrec::PeopleDetector& detector) 
 }
 
 void BM_DetectAndLandmarkHog(benchmark::State& state) {
-  bodyrec::HogOptions options = bodyrec::hog_preset("default");
+  bodyrec::HogOptions options = bodyrec::hog_preset(bodyrec::HogPreset::kDefault);
   options.motion_roi = false;  // unrelated still images: search the whole image (--motion off)
   bodyrec::HogPeopleDetector detector(options);
   detect_and_fit(state, detector);

@@ -19,6 +19,7 @@
 
 #include "bench_support.h"
 #include "bodyrec/reid/body_measures.h"
+#include "bodyrec/reid/gallery_reid_store.h"
 #include "bodyrec/reid/online_reid.h"
 #include "bodyrec/reid/orientation_estimator.h"
 #include "bodyrec/reid/partial_scan.h"
@@ -103,6 +104,7 @@ struct Pipeline {
   const Frames& s = frames();
   std::unique_ptr<AppearanceMatcher> matcher = make_matcher("stripes");
   std::unique_ptr<Gallery> gallery;
+  std::unique_ptr<GalleryReidStore> store;
   OrientationEstimator orient{s.synth->meta()};
   PartialScanExtractor scans{s.synth->meta()};
   GroundPlaneTracker floor{s.synth->meta().depth, s.synth->meta().depth_unit_m};
@@ -112,7 +114,8 @@ struct Pipeline {
 
   explicit Pipeline(int users) {
     gallery = std::make_unique<Gallery>(make_gallery(users, *matcher, "reid"));
-    reid = std::make_unique<OnlineReid>(*gallery, *matcher);
+    store = std::make_unique<GalleryReidStore>(*gallery, *matcher);
+    reid = std::make_unique<OnlineReid>(*store, *matcher);
   }
   // One frame; returns the bodies processed.
   size_t step() {

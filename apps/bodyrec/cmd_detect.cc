@@ -31,7 +31,8 @@ void add(CLI::App& app) {
   sub->footer(
       "Writes one JSON object per frame: {\"frame\":N,\"time\":S,\"detections\":[{\"box\":[x,y,w,h],\"score\":s}]}\n"
       "Example: bodyrec detect /usr/share/doc/opencv-doc/examples/data/vtest.avi --jsonl out/detect.jsonl "
-      "--annotate out/detect.avi");
+      "--annotate out/detect.avi\n"
+      "Photos (people of any size, no motion): bodyrec detect photos/ --preset photo --annotate out/photos/");
   add_source_options(*sub, command->source);
   add_output_options(*sub, command->outputs);
   add_detector_options(*sub, command->detector);

@@ -19,7 +19,7 @@ struct EvalLandmarksCommand {
   bool json = false;
 
   void run() const {
-    BodyShapeModel model(shape);
+    BodyShapeModel model(shape_model_path(shape));
     fitting.apply(model);
     const LandmarkDataset data = load_landmark_dataset(xml);
     if (data.landmarks == 0) throw InputError(xml + ": no box has landmarks (<part> elements)");
@@ -54,7 +54,7 @@ void add(CLI::App& eval) {
       "(docs/benchmarks.md).\n"
       "Example: bodyrec eval landmarks out/contours/test.xml --shape out/shape.dat --json");
   sub->add_option("test", command->xml, "imglab XML with numbered <part>s per box")->required();
-  sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  add_shape_model_option(*sub, command->shape);
   add_shape_fitting_options(*sub, command->fitting);
   sub->add_option("--per-person", command->per_person,
                   "Write every person's error as JSON lines (person, image, mean_px, rel_height, rel_width, "

@@ -30,11 +30,11 @@ struct EvalOrientCommand {
     bool any_truth = false;
     std::array<std::array<int, kViewCount>, kViewCount> confusion{};
     const int frames = run_orientation(input, options, [&](const OrientFrame& f) {
-      ms += f.ms;
-      bodies += static_cast<int>(f.bodies.size());
+      ms += f.result.ms;
+      bodies += static_cast<int>(f.result.bodies.size());
       if (!f.frame.truth) return;
       any_truth = true;
-      for (const OrientedBody& b : f.bodies) {
+      for (const OrientedBody& b : f.result.bodies) {
         if (b.truth < 0) {
           ++unmatched;
           continue;
@@ -82,8 +82,8 @@ struct EvalOrientCommand {
                 accuracy, no_view);
     std::printf("within one    %.4f (the true view or a neighbour)\n", within_one);
     std::printf("yaw error     %.2f degrees mean absolute (%d body-frames with a yaw)\n", mae, with_yaw);
-    std::printf("ms per body   %.3f (%s views%s)\n", per_body, options.views.c_str(),
-                options.depth_only ? ", depth only" : "");
+    std::printf("ms per body   %.3f (%s views%s)\n", per_body, view_method_name(options.pipeline.orientation.method),
+                options.pipeline.bodies.depth_only ? ", depth only" : "");
     std::printf("confusion     rows truth, columns estimate:");
     for (View c : kAllViews) std::printf(" %3s", view_name(c));
     std::printf("\n");
@@ -111,7 +111,7 @@ void add(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("orient", "Score body orientation views against a synthetic recording's truth");
   sub->add_option("REC", command->input, "Recording with a truth stream (bodyrec synth)")->required();
   add_orient_options(*sub, command->options);
-  sub->add_flag("--face-oracle", command->options.face_oracle,
+  sub->add_flag("--face-oracle", command->options.pipeline.face_oracle,
                 "Face flag from the truth yaw (|yaw| < 90) instead of the face detector: measures the view rule alone");
   sub->add_option("--min-visible", command->min_visible, "Bodies with a smaller visible fraction are not scored")
       ->check(CLI::Range(0.0, 1.0))

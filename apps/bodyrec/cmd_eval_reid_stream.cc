@@ -1,13 +1,13 @@
 // `bodyrec eval reid-stream REC`: runs online re-identification over a recording with truth (bodyrec
-// synth) on a fresh gallery (or --gallery) and scores it: per-frame identity accuracy, splits, merges
+// synth) on a fresh store in memory (or --gallery) and scores it: per-frame identity accuracy, splits, merges
 // (eval/reid_stream_metrics.h), ms per frame.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/reid_stream_metrics.h"
 #include "bodyrec/io/sinks.h"
+#include "bodyrec/reid/memory_reid_store.h"
 #include "command.h"
 #include "reid_output.h"
 
@@ -20,31 +20,23 @@ struct EvalReidStreamCommand {
   bool json = false;
 
   void run() const {
-    const ReidInput in = open_reid_input(input, options);  // before any file is created
+    ReidInput in = open_reid_input(input, options);  // before any file is created
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
-    // A fresh gallery in a private temporary directory unless one is named.
-    std::filesystem::path scratch;
-    std::string path = gallery;
-    if (path.empty()) {
-      char tmpl[] = "/tmp/bodyrec-reid-XXXXXX";
-      if (!mkdtemp(tmpl)) throw ProcessingError("eval reid-stream: cannot create a temporary directory");
-      scratch = tmpl;
-      path = (scratch / "gallery.db").string();
+    // A fresh store in memory unless a gallery is named.
+    std::unique_ptr<Gallery> g;
+    std::unique_ptr<ReidStore> store;
+    if (gallery.empty()) {
+      store = std::make_unique<MemoryReidStore>();
+    } else {
+      g = open_reid_gallery(options, gallery);
+      store = std::make_unique<GalleryReidStore>(*g, *in.matcher, GalleryReidStoreOptions{input, std::nullopt});
     }
-    struct Cleanup {
-      std::filesystem::path dir;
-      ~Cleanup() {
-        std::error_code ec;
-        if (!dir.empty()) std::filesystem::remove_all(dir, ec);
-      }
-    } cleanup{scratch};
-    auto g = open_reid_gallery(options, path);
     ReidStreamCounter counter;
     bool any_truth = false;
     int last_frame = -1;
     double ms = 0, last_time = 0;
-    const int frames = run_reid(in, options, *g, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, options, *store, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -93,7 +85,7 @@ struct EvalReidStreamCommand {
                                           {"identities", s.identities},
                                           {"ms_per_frame", per_frame},
                                           {"matcher", options.matcher},
-                                          {"match_views", match_views(options)}})
+                                          {"match_views", to_string(match_views(options))}})
                               .dump()
                               .c_str());
   }
@@ -105,7 +97,7 @@ void add(CLI::App& app) {
       "reid-stream", "Score online re-identification on a recording with truth: per-frame accuracy, splits, merges");
   sub->add_option("REC", command->input, "Recording with a truth stream (bodyrec synth)")->required();
   sub->add_option("--gallery", command->gallery,
-                  "Start from (and write to) this gallery instead of a fresh temporary one");
+                  "Start from (and write to) this gallery instead of a fresh one in memory");
   add_reid_options(*sub, command->options, false);
   sub->add_option("--jsonl", command->jsonl, "The run's per-frame output, as `bodyrec reid --jsonl` writes it, each body with its true \"person\" (identity, null when none)");
   sub->add_flag("--json", command->json,

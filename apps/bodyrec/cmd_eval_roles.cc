@@ -44,7 +44,7 @@ struct EvalRolesCommand {
                                   });
     const RoleScores s = evaluator.scores();
     const double ms = stats.frames ? stats.total_ms() / stats.frames : 0.0;
-    std::printf("roles         %s\n", groups.pipeline.roles.c_str());
+    std::printf("roles         %s\n", to_string(groups.pipeline.roles));
     std::printf("frames        %d labelled frames scored (of %zu in %s; %d processed)\n", s.frames, labelled.size(),
                 gt.c_str(), stats.frames);
     std::printf("boxes         %d labelled, %d matched to a tracked box at IoU >= %.2f\n", s.boxes, s.matched, iou);

@@ -49,7 +49,7 @@ struct EvalTrackCommand {
     const TrackingScores s = evaluator.scores();
     const double ms = stats.frames ? stats.processing_ms / stats.frames : 0.0;
     std::printf("detector      %s (every %d frames; %s in between)\n", people->describe().c_str(),
-                tracking.detect_every, tracking.between == "local" ? "searched near tracks" : "predicted");
+                tracking.detect_every, tracking.between == BetweenDetections::kLocal ? "searched near tracks" : "predicted");
     std::printf("frames        %d scored (of %d processed)\n", s.frames, stats.frames);
     std::printf("ground truth  %d boxes; tracks %d boxes\n", s.ground_truth, s.hypotheses);
     std::printf("MOTA          %.4f\n", s.mota);

@@ -46,7 +46,7 @@ struct LandmarkCommand {
         throw UsageError("give the fHOG model with either --detector or --model, not both");
       detector.model_file = detector_choice;
     }
-    BodyShapeModel model(shape);
+    BodyShapeModel model(shape_model_path(shape));
     fitting.apply(model);
     auto frames = open_source(source);
     auto people = make_detector(detector, frames->fps().has_value());
@@ -141,12 +141,13 @@ void add(CLI::App& app) {
       "With --track the people are the tracker's (options of `bodyrec track`): each has \"id\" and \"state\"\n"
       "(confirmed|lost) instead of \"score\", the filtered box, and no landmarks while lost (a predicted box);\n"
       "--mot writes the tracks. A new person appears once confirmed (--min-hits detections).\n"
-      "For unrelated still images use --motion off (the default HOG preset searches moving regions in video).\n"
+      "People come from --preset auto: the photo detector on still images, HOG around moving regions on video.\n"
+      "The shape model is the shipped one (models/README.md) unless --shape names another.\n"
       "On a slow CPU, --no-mirror runs the network on the box alone: 20-40 % less fitting time for 0.1 points\n"
       "more error (Penn-Fudan validation: 5.61 against 5.50 % of the box height; docs/benchmarks.md).\n"
-      "Example: bodyrec landmark photos/ --shape out/shape.dat --detector out/detector.svm --annotate out/landmarks");
+      "Example: bodyrec landmark photo.jpg --annotate out/landmarks/");
   add_source_options(*sub, command->source);
-  sub->add_option("--shape", command->shape, "Shape model (bodyrec train-shape)")->required();
+  add_shape_model_option(*sub, command->shape);
   add_shape_fitting_options(*sub, command->fitting);
   sub->add_option("--detector", command->detector_choice,
                   "People detector: 'hog' (OpenCV HOG, options below) or a dlib fHOG FILE.svm")

@@ -40,7 +40,7 @@ struct OrientCommand {
     double ms = 0;
     const int frames = run_orientation(input, options, [&](const OrientFrame& f) {
       nlohmann::json list = nlohmann::json::array();
-      for (const OrientedBody& b : f.bodies) {
+      for (const OrientedBody& b : f.result.bodies) {
         ++bodies;
         const ViewEstimate& v = b.view;
         if (v.view) ++per_view[view_name(*v.view)];
@@ -56,13 +56,13 @@ struct OrientCommand {
                         v.reason.c_str());
         }
       }
-      ms += f.ms;
+      ms += f.result.ms;
       if (lines) lines->write({{"frame", f.frame.index}, {"time_s", f.frame.time_s}, {"bodies", list}});
     });
     const double per_body = bodies ? ms / bodies : 0.0;
     if (text) {
       std::printf("frames %d, bodies %d, no view %d, %.3f ms per body (%s)\nviews:", frames, bodies, none, per_body,
-                  options.views.c_str());
+                  view_method_name(options.pipeline.orientation.method));
       for (const auto& [name, n] : per_view) std::printf(" %s %d", name.c_str(), n);
       std::printf("\n");
     }

@@ -18,15 +18,16 @@ struct ReidCommand {
   bool json = false, quiet = false;
 
   void run() const {
-    const ReidInput in = open_reid_input(input, options);  // before any file is created
+    ReidInput in = open_reid_input(input, options);  // before any file is created
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(options, options.gallery.path);
+    GalleryReidStore store(*gallery, *in.matcher, {input, std::nullopt});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
-    const int frames = run_reid(in, options, *gallery, [&](const ReidFrame& f) {
+    const int frames = run_reid(in, options, store, [&](const ReidFrame& f) {
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -62,7 +63,7 @@ struct ReidCommand {
                                           {"ms_per_frame", per_frame},
                                           {"ms_per_body", per_body},
                                           {"matcher", options.matcher},
-                                          {"match_views", match_views(options)}})
+                                          {"match_views", to_string(match_views(options))}})
                               .dump()
                               .c_str());
   }

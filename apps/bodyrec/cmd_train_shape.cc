@@ -12,6 +12,7 @@
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "bodyrec/landmarks/shape_training.h"
 #include "command.h"
+#include "enum_option.h"
 #include "output_check.h"
 #include "landmark_report.h"
 
@@ -84,7 +85,7 @@ struct TrainShapeCommand {
         !whole_int(net_size.substr(x + 1), options.net.input_height))
       throw UsageError("--net-size must be WxH, e.g. 32x96 (got '" + net_size + "')");
     options.seed = seed;
-    if (options.method == "mask-net" && !seed.empty()) {
+    if (options.method == ShapeMethod::kMaskNet && !seed.empty()) {
       if (seed.size() > 9 || seed.find_first_not_of("0123456789") != std::string::npos)
         throw UsageError("--seed must be a whole number below 10^9 with --method mask-net (got '" + seed + "')");
       options.net.seed = static_cast<unsigned>(std::stoul(seed));
@@ -119,8 +120,10 @@ void add(CLI::App& app) {
   sub->add_option("train", command->train_xml, "Training set: imglab XML with numbered <part>s per box")->required();
   sub->add_option("--out", command->out, "Shape model file to write")->required();
   auto& o = command->options;
-  sub->add_option("--method", o.method, "mask-net (per-pixel body mask, then its outline) or trees (the thesis's)")
-      ->capture_default_str();
+  add_enum_option(*sub, "--method", o.method,
+                  std::vector<std::pair<std::string, ShapeMethod>>{{"mask-net", ShapeMethod::kMaskNet},
+                                                                   {"trees", ShapeMethod::kTrees}},
+                  "mask-net (per-pixel body mask, then its outline) or trees (the thesis's)", "mask-net");
   sub->add_option("--net-size", command->net_size, "mask-net: the box is resampled to WxH (multiples of 8)")
       ->capture_default_str();
   sub->add_option("--iterations", o.net.iterations, "mask-net: training mini-batches")->capture_default_str();

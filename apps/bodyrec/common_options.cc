@@ -1,6 +1,7 @@
 #include "common_options.h"
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/detection/dpm_people_detector.h"
 #include "bodyrec/detection/fhog_detector.h"
 #include "bodyrec/detection/hog_people_detector.h"
 
@@ -28,9 +29,13 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
 
 void add_detector_options(CLI::App& sub, DetectorOptions& o) {
   sub.add_option("--preset", o.preset,
-                 "HOG preset: 'default' (tuned: motion regions, people 60-140 px, stride 8) or 'thesis' "
-                 "(hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original size)")
-      ->check(CLI::IsMember({"default", "thesis"}));
+                 "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
+                 "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
+                 "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
+                 "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
+                 "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)")
+      ->check(CLI::IsMember({"auto", "default", "photo", "thesis", "opencv"}))
+      ->capture_default_str();
   sub.add_option("--model", o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
@@ -73,9 +78,30 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
     f.nms_iou = o.nms_iou;
     return std::make_unique<FhogDetector>(f);
   }
-  HogOptions h = hog_preset(o.preset);
   auto given = [](const CLI::Option* opt) { return opt && opt->count() > 0; };
-  if (given(o.o_hog_model)) h.model = o.hog_model;
+  std::string preset = o.preset;
+  if (preset == "auto") {
+    // Still images have no motion to narrow the search and their people may be any size: the photo
+    // detector, unless a HOG option says HOG is wanted.
+    bool hog = o.roi.size() == 4 || o.motion == "on";
+    for (const CLI::Option* opt : {o.o_hog_model, o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize,
+                                   o.o_levels, o.o_adapt, o.o_motion_margin})
+      hog |= given(opt);
+    preset = consecutive_frames || hog ? "default" : "photo";
+  }
+  if (preset == "photo") {
+    // The DPM has none of HOG's knobs and no motion regions: refuse them rather than ignore them.
+    for (const CLI::Option* opt : {o.o_hog_model, o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize,
+                                   o.o_levels, o.o_adapt, o.o_motion_margin})
+      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset photo uses the DPM detector");
+    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset photo uses the DPM detector");
+    if (o.motion == "on") throw UsageError("--motion on needs a HOG preset; --preset photo searches the whole image");
+    DpmOptions d = dpm_photo_preset();
+    d.nms_iou = o.nms_iou;
+    return std::make_unique<DpmPeopleDetector>(d);
+  }
+  HogOptions h = hog_preset(*parse_hog_preset(preset));  // --preset is checked against the names
+  if (given(o.o_hog_model)) h.model = *parse_hog_model(o.hog_model);
   if (given(o.o_hit)) h.hit_threshold = o.hit_threshold;
   if (given(o.o_stride)) h.win_stride = o.win_stride;
   if (given(o.o_padding)) h.padding = o.padding;

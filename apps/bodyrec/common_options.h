@@ -28,7 +28,7 @@ void add_output_options(CLI::App& sub, OutputOptions& options);
 
 // Detector choice and every HOG parameter; explicitly given options override the preset's values.
 struct DetectorOptions {
-  std::string preset = "default";
+  std::string preset = "auto";  // auto: photo for still images, default for videos and cameras
   std::string model_file;  // dlib fHOG .svm; replaces HOG when given
   double fhog_upsample = 1.0, fhog_threshold = 0.0;
   std::string hog_model = "default";

@@ -1,12 +1,16 @@
 #include "groups_job.h"
 
 #include <cmath>
+#include <map>
 
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/annotate.h"
+#include "bodyrec/io/progress.h"
 #include "bodyrec/io/sinks.h"
+#include "enum_option.h"
+#include "run_sinks.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -90,8 +94,11 @@ void draw(cv::Mat& canvas, const Frame& frame, const GroupFrame& g) {
 }  // namespace
 
 GroupPipelineOptions GroupsJobOptions::resolved() const {
-  GroupPipelineOptions o = pipeline;
-  o.membership = membership.resolved();
+  GroupPipelineOptions o;
+  o.tracking = tracking;
+  o.stages = pipeline;
+  o.stages.membership = membership.resolved();
+  o.fps = fps;
   o.check();
   return o;
 }
@@ -106,11 +113,13 @@ std::shared_ptr<const GroundPlane> GroupsJobOptions::ground_plane() const {
 
 void add_groups_options(CLI::App& sub, GroupsJobOptions& o) {
   add_tracker_options(sub, o.tracking);
-  GroupPipelineOptions& p = o.pipeline;
-  sub.add_option("--roles", p.roles,
-                 "Role logic: groups (trajectories, one leader per group), thesis (Table 4.1, permanent tags) "
-                 "or voting (thesis rules, 50-frame votes)")
-      ->check(CLI::IsMember({"groups", "thesis", "voting"}))->capture_default_str();
+  GroupStagesOptions& p = o.pipeline;
+  add_enum_option(sub, "--roles", p.roles,
+                  std::vector<std::pair<std::string, RoleMode>>{
+                      {"groups", RoleMode::kGroups}, {"thesis", RoleMode::kThesis}, {"voting", RoleMode::kVoting}},
+                  "Role logic: groups (trajectories, one leader per group), thesis (Table 4.1, permanent tags) "
+                  "or voting (thesis rules, 50-frame votes)",
+                  "groups");
   sub.add_option("--homography", o.homography,
                  "Image-to-ground homography (3x3 text, metres): group distances and speeds on the ground");
   sub.add_option("--calibration", o.calibration,
@@ -155,36 +164,32 @@ void add_groups_options(CLI::App& sub, GroupsJobOptions& o) {
 GroupsRunStats run_groups(FrameSource& source, PeopleDetector& detector, const GroupsJobOptions& options,
                           const OutputOptions& outputs, bool write_jsonl,
                           const std::function<void(const Frame&, const GroupFrame&)>& on_frame) {
-  GroupPipeline pipeline(options.resolved(), options.ground_plane());
-  const double fps = options.fps > 0 ? options.fps : source.fps().value_or(25.0);
-  std::optional<AnnotatedWriter> annotated;
-  if (!outputs.annotate.empty()) annotated.emplace(outputs.annotate, fps);
-  std::optional<JsonlWriter> jsonl;
-  if (write_jsonl) jsonl.emplace(outputs.jsonl);
+  GroupPipeline pipeline(detector, options.resolved(), options.ground_plane());
+  RunSinks sinks(outputs, write_jsonl, options.fps > 0 ? options.fps : source.fps().value_or(25.0));
+  Progress progress(source.frame_count(), outputs.quiet);
   GroupsRunStats stats;
-  OutputOptions tracking_outputs;  // the tracking loop writes only the MOT rows of the tracks
-  tracking_outputs.mot = outputs.mot;
-  tracking_outputs.quiet = outputs.quiet;
-  const auto tracking = run_tracking(
-      source, detector, options.tracking, tracking_outputs, false,
-      [&](const Frame& frame, const std::vector<TrackedPerson>& tracks) {
-        const double t = options.fps > 0 ? frame.index / options.fps : frame.time_s;
-        const GroupFrame g = pipeline.process(frame.image, t, tracks);
-        stats.stages.motion += g.ms.motion;
-        stats.stages.groups += g.ms.groups;
-        stats.stages.roles += g.ms.roles;
-        stats.stages.leader += g.ms.leader;
-        stats.stages.flow += g.ms.flow;
-        if (jsonl) jsonl->write(frame_json(frame, t, g));
-        if (annotated) {
-          cv::Mat canvas = frame.image.clone();
-          draw(canvas, frame, g);
-          annotated->write(frame.index, canvas);
-        }
-        if (on_frame) on_frame(frame, g);
-      });
-  stats.frames = tracking.frames;
-  stats.tracking_ms = tracking.processing_ms;
+  for (Frame frame; source.read(frame);) {
+    const GroupPipelineResult r = pipeline.process(frame);
+    ++stats.frames;
+    stats.tracking_ms += r.tracking_ms;
+    stats.stages.motion += r.groups.ms.motion;
+    stats.stages.groups += r.groups.ms.groups;
+    stats.stages.roles += r.groups.ms.roles;
+    stats.stages.leader += r.groups.ms.leader;
+    stats.stages.flow += r.groups.ms.flow;
+    if (sinks.jsonl) sinks.jsonl->write(frame_json(frame, r.time_s, r.groups));
+    if (sinks.mot) {
+      for (const auto& t : r.tracks) sinks.mot->write(frame.index, t.id, t.box, 1.0);
+      sinks.mot->end_frame();
+    }
+    if (sinks.annotated) {
+      cv::Mat canvas = frame.image.clone();
+      draw(canvas, frame, r.groups);
+      sinks.annotated->write(frame.index, canvas);
+    }
+    if (on_frame) on_frame(frame, r.groups);
+    progress.update(stats.frames);
+  }
   return stats;
 }
 

@@ -1,5 +1,5 @@
-// The group-leader loop shared by `groups` and `eval roles`: frames -> detector -> tracker ->
-// GroupPipeline (motion, membership, roles, leader tracking, direction) -> sinks.
+// Shared by `groups` and `eval roles`: the options of the group-leader pipeline (groups/group_pipeline.h)
+// and the loop source -> GroupPipeline -> sinks (JSONL, MOT rows of the tracks, annotated video).
 #pragma once
 
 #include <functional>
@@ -15,7 +15,7 @@ namespace bodyrec::cli {
 
 struct GroupsJobOptions {
   TrackingJobOptions tracking;
-  GroupPipelineOptions pipeline;
+  GroupStagesOptions pipeline;
   GroupCliOptions membership;      // --window, --linkage, ... (shared with eval groups)
   std::string homography, calibration;
   double fps = 0;                  // time base override (0 = the source's)

@@ -1,21 +1,11 @@
 #include "reid_job.h"
 
-#include <chrono>
 #include <map>
 
 #include "bodyrec/core/error.h"
-#include "bodyrec/reid/body_measures.h"
-#include "bodyrec/reid/partial_scan.h"
-#include "bodyrec/rgbd/ground_plane.h"
+#include "enum_option.h"
 
 namespace bodyrec::cli {
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   if (gallery_option) add_gallery_path_option(sub, o.gallery);
@@ -62,11 +52,11 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
                  "A scan says \"new person\" only when its best user is below the threshold by this share of "
                  "|threshold|")
       ->capture_default_str();
-  sub.add_option("--match-views", o.match_views,
-                 "all: compare a scan with every view of a user; near: same and complementary views only (thesis), "
-                 "all views when the user has none of those")
-      ->check(CLI::IsMember({"all", "near"}))
-      ->default_str("near with --matcher kaze (the thesis), else all");
+  add_enum_option(sub, "--match-views", o.match_views,
+                  std::vector<std::pair<std::string, MatchViews>>{{"all", MatchViews::kAll}, {"near", MatchViews::kNear}},
+                  "all: compare a scan with every view of a user; near: same and complementary views only (thesis), "
+                  "all views when the user has none of those",
+                  "near with --matcher kaze (the thesis), else all");
   sub.add_option("--stature-weight", o.reid.stature_weight,
                  "Stature fused with appearance: a user whose stature (top of the depth points above the floor) "
                  "differs from the body's by more than 4 cm loses this share of |threshold| per further cm; 0 = "
@@ -77,10 +67,12 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option) {
   add_orient_options(sub, o.orient);
 }
 
-std::string match_views(const ReidCliOptions& options) {
-  if (!options.match_views.empty()) return options.match_views;
-  return options.matcher == "kaze" ? "near" : "all";
+MatchViews match_views(const ReidCliOptions& options) {
+  if (options.match_views) return *options.match_views;
+  return options.matcher == "kaze" ? MatchViews::kNear : MatchViews::kAll;
 }
+
+const char* to_string(MatchViews views) { return views == MatchViews::kNear ? "near" : "all"; }
 
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path) {
   GalleryOptions g;
@@ -95,60 +87,36 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
 
 ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options) {
   if (is_skeleton_file(input)) throw InputError(input + ": re-identification needs a recording with colour and depth");
-  ReidInput in{input, RecordingReader(input).meta(), nullptr};
-  if (!in.meta.streams.color || !in.meta.streams.depth)
+  check_orient_options(options.orient);
+  ReidInput in{input, std::make_unique<OrientSource>(input), nullptr};
+  if (!in.source->meta().streams.color || !in.source->meta().streams.depth)
     throw InputError(input + "/meta.json: re-identification needs colour and depth streams");
   in.matcher = make_matcher(options.matcher, options.model);
   return in;
 }
 
-int run_reid(const ReidInput& input, const ReidCliOptions& options, Gallery& gallery,
+int run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore& store,
              const std::function<void(const ReidFrame&)>& sink) {
-  OnlineReidOptions ro = options.reid;
-  // Our own segmentation refuses many statures (a body with someone beside it): waiting for one there
-  // leaves bodies undecided for a second without keeping apart any look-alikes (docs/benchmarks.md).
-  if (options.stature_wait >= 0) ro.stature_wait_frames = options.stature_wait;
-  else if (uses_own_segmentation(input.meta, options.orient)) ro.stature_wait_frames = 0;
-  ro.all_views = match_views(options) == "all";
-  if (ro.source.empty()) ro.source = input.path;
-  OnlineReid reid(gallery, *input.matcher, ro);
-  const PartialScanExtractor scans(input.meta);
-  std::map<uint64_t, cv::Rect> last_box;  // per track: the colour box of its last scan
-  GroundPlaneTracker floor(input.meta.depth, input.meta.depth_unit_m);
-  const int frames = run_orientation(input.path, options.orient, [&](const OrientFrame& f) {
-    ReidFrame out{f.frame, f.bodies, {}, f.ms, 0, 0};
-    std::vector<ReidBody> bodies;
-    auto t0 = std::chrono::steady_clock::now();
-    // The floor: heights for the scans' bands and the statures.
-    const std::optional<GroundPlane>& ground = floor.update(f.frame.index, f.frame.depth);
-    for (const OrientedBody& b : f.bodies) {
-      ReidBody rb;
-      rb.track = b.key;
-      rb.view = b.view;
-      if (reid.wants_scan(b.key, b.view)) {
-        const BodyRef ref{b.key, b.body, f.labels, b.slot};
-        rb.scan = scans.extract(f.frame, ref, b.view, nullptr, ground ? &*ground : nullptr);
-        if (rb.scan) last_box[b.key] = rb.scan->box;
-        if (ground && rb.scan)
-          rb.stature_m = measure_stature(f.frame.depth, input.meta.depth_unit_m, input.meta.depth, f.labels, b.slot, *ground);
-      }
-      const auto box = last_box.find(b.key);
-      if (box != last_box.end()) rb.box = box->second;
-      bodies.push_back(std::move(rb));
-    }
-    out.ms_scan = ms_since(t0);
-    t0 = std::chrono::steady_clock::now();
-    out.step = reid.step(f.frame.time_s, bodies);
-    out.ms_reid = ms_since(t0);
-    for (const ReidEvent& e : out.step.events)
-      if (e.kind == ReidEventKind::kLeft) last_box.erase(e.track);
-    sink(out);
-  });
+  ReidPipelineOptions po;
+  po.orient = options.orient.pipeline;
+  po.reid = options.reid;
+  po.reid.all_views = match_views(options) == MatchViews::kAll;
+  if (options.stature_wait >= 0) po.stature_wait_frames = options.stature_wait;
+  OrientSource& source = *input.source;
+  ReidPipeline pipeline(source.meta(), store, *input.matcher, po, source.segmenter(options.orient), input.path);
+  const int limit = options.orient.max_frames >= 0 ? std::min(source.frame_count(), options.orient.max_frames)
+                                                   : source.frame_count();
+  int frames = 0;
+  for (RgbdFrame f; frames < limit && source.read(f); ++frames) {
+    const ReidResult r = pipeline.process(f);
+    sink({f, r.bodies, r.step, r.ms_orient, r.ms_scan, r.ms_reid});
+  }
   RgbdFrame end;
   end.index = -1;
-  ReidFrame last{end, {}, {}, 0, 0, 0};
-  last.step.events = reid.finish();
-  sink(last);
+  ReidStep last;
+  last.events = pipeline.finish();
+  const std::vector<OrientedBody> none;
+  sink({end, none, last});
   return frames;
 }
 

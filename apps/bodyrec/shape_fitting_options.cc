@@ -1,5 +1,7 @@
 #include "shape_fitting_options.h"
 
+#include "bodyrec/core/model_files.h"
+
 namespace bodyrec::cli {
 
 void ShapeFittingOptions::apply(BodyShapeModel& model) const {
@@ -8,6 +10,18 @@ void ShapeFittingOptions::apply(BodyShapeModel& model) const {
   if (no_mirror) model.set_mirror_average(false);
   if (no_leg_slit) model.set_leg_slit(false);
   if (no_correction) model.set_shape_correction(false);
+}
+
+std::string shape_model_path(const std::string& given) {
+  if (!given.empty()) return given;
+  return require_model_file(kShippedShapeModel,
+                            "make one with `bodyrec make-contour-set --pennfudan DIR --out set --flip` and "
+                            "`bodyrec train-shape set/train.xml --out shape.dat`, then give it with --shape");
+}
+
+void add_shape_model_option(CLI::App& sub, std::string& path) {
+  sub.add_option("--shape", path, "Shape model (bodyrec train-shape); default: the shipped model " +
+                                      std::string(kShippedShapeModel) + " (models/README.md)");
 }
 
 void add_shape_fitting_options(CLI::App& sub, ShapeFittingOptions& options) {

@@ -23,4 +23,11 @@ struct ShapeFittingOptions {
 // --mask-threshold, --threshold-offsets, --no-mirror, --no-leg-slit, --no-correction.
 void add_shape_fitting_options(CLI::App& sub, ShapeFittingOptions& options);
 
+// The shipped body shape model (models/README.md), or `given` when not empty. InputError naming the folders
+// searched and how to make one when it is not installed.
+std::string shape_model_path(const std::string& given);
+
+// --shape FILE, defaulting to the shipped model.
+void add_shape_model_option(CLI::App& sub, std::string& path);
+
 }  // namespace bodyrec::cli

@@ -1,11 +1,13 @@
 #include "tracking_job.h"
 
 #include <chrono>
+#include <map>
 #include <optional>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
+#include "enum_option.h"
 #include "run_sinks.h"
 
 namespace bodyrec::cli {
@@ -15,10 +17,12 @@ std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions&
   sub.add_option("--detect-every", o.detect_every,
                  "Run the full detector on every Nth frame (see --between for the frames in between)")
       ->check(CLI::PositiveNumber)->capture_default_str();
-  sub.add_option("--between", o.between,
-                 "Frames between full detections: 'local' searches only around the tracks, 'predict' only "
-                 "carries them by their Kalman prediction")
-      ->check(CLI::IsMember({"local", "predict"}))->capture_default_str();
+  add_enum_option(sub, "--between", o.between,
+                  std::vector<std::pair<std::string, BetweenDetections>>{{"local", BetweenDetections::kLocal},
+                                                                         {"predict", BetweenDetections::kPredict}},
+                  "Frames between full detections: 'local' searches only around the tracks, 'predict' only "
+                  "carries them by their Kalman prediction",
+                  "local");
   sub.add_option("--min-hits", t.min_hits, "Detections needed to confirm a track")->capture_default_str();
   sub.add_option("--max-age", t.max_age, "Frames a track survives without detections (occlusions)")
       ->capture_default_str();
@@ -81,7 +85,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
       for (const auto& t : tracks)
         draw_labelled_box(canvas, t.box, id_color(t.id), std::to_string(t.id), t.state == TrackState::kLost ? 1 : 2);
       draw_caption(canvas, "frame " + std::to_string(frame.index) + "  tracks " + std::to_string(tracks.size()) +
-                               (detect ? "" : options.between == "local" ? "  (searched near tracks)" : "  (predicted)"));
+                               (detect ? "" : options.between == BetweenDetections::kLocal ? "  (searched near tracks)" : "  (predicted)"));
       annotated->write(frame.index, canvas);
     }
     if (on_frame) on_frame(frame, tracks);

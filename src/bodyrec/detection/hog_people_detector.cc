@@ -80,7 +80,7 @@ void pyramid_windows(const cv::HOGDescriptor& hog, const cv::Mat& image, double 
 }  // namespace
 
 void HogOptions::set_height_range(double min_height, double max_height) {
-  const double window_height = (model == "daimler" ? 96.0 : 128.0) * body_height;
+  const double window_height = (model == HogModel::kDaimler ? 96.0 : 128.0) * body_height;
   resize = window_height / min_height;
   levels = static_cast<int>(std::ceil(std::log(max_height / min_height) / std::log(scale))) + 1;
   this->min_height = min_height;
@@ -88,8 +88,6 @@ void HogOptions::set_height_range(double min_height, double max_height) {
 }
 
 void HogOptions::check() const {
-  if (model != "default" && model != "daimler")
-    throw UsageError("HOG model must be 'default' or 'daimler' (got '" + model + "')");
   if (win_stride < 1) throw UsageError("--win-stride must be >= 1");
   if (padding < 0) throw UsageError("--padding must be >= 0");
   if (!(scale > 1.0)) throw UsageError("--scale must be > 1");
@@ -105,20 +103,57 @@ void HogOptions::check() const {
   motion.check();
 }
 
-HogOptions hog_preset(const std::string& name) {
-  HogOptions o;
-  if (name == "thesis") return o;  // the struct defaults are the thesis's call
-  if (name == "default") {
-    o.win_stride = 8;  // a multiple of the 8-pixel cell: OpenCV's fast path (stride 12 is slower)
-    o.group_threshold = 1;  // measured on vtest.avi: AP50 0.809 vs 0.797 with 2, same cost
-    o.scale = 1.08;
-    o.set_height_range(60, 140);
-    o.motion_roi = true;
-    o.motion.warmup_frames = 1;  // the first frame has no motion yet: search all of it
-    o.adapt_after = 40;
-    return o;
+const char* to_string(HogModel model) { return model == HogModel::kDaimler ? "daimler" : "default"; }
+
+std::optional<HogModel> parse_hog_model(const std::string& text) {
+  if (text == "default") return HogModel::kDefault;
+  if (text == "daimler") return HogModel::kDaimler;
+  return std::nullopt;
+}
+
+const char* to_string(HogPreset preset) {
+  switch (preset) {
+    case HogPreset::kDefault: return "default";
+    case HogPreset::kThesis: return "thesis";
+    case HogPreset::kOpenCv: return "opencv";
   }
-  throw UsageError("unknown preset '" + name + "' (expected 'default' or 'thesis')");
+  return "?";
+}
+
+std::optional<HogPreset> parse_hog_preset(const std::string& text) {
+  for (HogPreset p : {HogPreset::kDefault, HogPreset::kThesis, HogPreset::kOpenCv})
+    if (text == to_string(p)) return p;
+  return std::nullopt;
+}
+
+HogOptions hog_preset(HogPreset preset) {
+  HogOptions o;
+  switch (preset) {
+    case HogPreset::kThesis:
+      return o;  // the struct defaults are the thesis's call
+    case HogPreset::kDefault:
+      o.win_stride = 8;  // a multiple of the 8-pixel cell: OpenCV's fast path (stride 12 is slower)
+      o.group_threshold = 1;  // measured on vtest.avi: AP50 0.809 vs 0.797 with 2, same cost
+      o.scale = 1.08;
+      o.set_height_range(60, 140);
+      o.motion_roi = true;
+      o.motion.warmup_frames = 1;  // the first frame has no motion yet: search all of it
+      o.adapt_after = 40;
+      return o;
+    case HogPreset::kOpenCv:
+      // OpenCV's people detection sample (samples/cpp/peopledetect.cpp): detectMultiScale(img, found, 0,
+      // Size(8,8), Size(), 1.05, 2) on the whole image, each window then shrunk as the sample does (x + 10 %,
+      // y + 7 %, 80 % of the width and height).
+      o.hit_threshold = 0;
+      o.win_stride = 8;
+      o.padding = 0;
+      o.body_width = 0.8;
+      o.body_height = 0.8;
+      o.body_center_x = 0.5;
+      o.body_center_y = 0.47;
+      return o;
+  }
+  return o;
 }
 
 HogPeopleDetector::HogPeopleDetector(const HogOptions& options) : options_(options) {
@@ -133,7 +168,7 @@ const cv::HOGDescriptor& HogPeopleDetector::hog_for(int levels) const {
   auto it = hogs_.find(levels);
   if (it != hogs_.end()) return it->second;
   cv::HOGDescriptor hog;
-  if (options_.model == "daimler") {
+  if (options_.model == HogModel::kDaimler) {
     hog = cv::HOGDescriptor(cv::Size(48, 96), cv::Size(16, 16), cv::Size(8, 8), cv::Size(8, 8), 9);
     hog.setSVMDetector(cv::HOGDescriptor::getDaimlerPeopleDetector());
   } else {
@@ -249,7 +284,7 @@ std::vector<Detection> HogPeopleDetector::detect_near(const cv::Mat& frame, cons
 
 std::string HogPeopleDetector::describe() const {
   std::ostringstream s;
-  s << "OpenCV HOG (" << options_.model << " SVM, hit " << options_.hit_threshold << ", stride "
+  s << "OpenCV HOG (" << to_string(options_.model) << " SVM, hit " << options_.hit_threshold << ", stride "
     << options_.win_stride << ", padding " << options_.padding << ", scale " << options_.scale << ", group "
     << options_.group_threshold << ", resize " << options_.resize << ", levels " << options_.levels
     << (options_.motion_roi ? ", motion regions" : "") << (heights_ ? ", scene-adaptive scales" : "") << ")";

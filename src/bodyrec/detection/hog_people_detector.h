@@ -17,8 +17,13 @@
 
 namespace bodyrec {
 
+// OpenCV's people SVMs: the 64x128 INRIA one (kDefault) or the 48x96 Daimler one.
+enum class HogModel { kDefault, kDaimler };
+const char* to_string(HogModel model);                        // "default", "daimler"
+std::optional<HogModel> parse_hog_model(const std::string& text);  // the inverse
+
 struct HogOptions {
-  std::string model = "default";  // "default" (64x128 INRIA SVM) or "daimler" (48x96)
+  HogModel model = HogModel::kDefault;
   double hit_threshold = -0.2;    // SVM score a window must exceed
   int win_stride = 12;            // window step in pixels of the (resized) image
   int padding = 16;               // detectMultiScale padding
@@ -50,9 +55,14 @@ struct HogOptions {
   void check() const;  // throws UsageError naming the bad field
 };
 
-// Named presets: "thesis" (the thesis's Ch4 call: hit -0.2, stride 12, padding 16, scale 1.05, group 2,
-// original size, whole frame) and "default" (tuned on vtest.avi for AP50 per millisecond).
-HogOptions hog_preset(const std::string& name);
+// Presets: kThesis (the thesis's Ch4 call: hit -0.2, stride 12, padding 16, scale 1.05, group 2, original
+// size, whole frame), kDefault (tuned on vtest.avi for AP50 per millisecond: motion regions, people 60-140 px)
+// and kOpenCv (OpenCV's peopledetect sample: hit 0, stride 8, no padding, scale 1.05, group 2, its
+// window-to-body shrink).
+enum class HogPreset { kDefault, kThesis, kOpenCv };
+const char* to_string(HogPreset preset);                         // "default", "thesis", "opencv"
+std::optional<HogPreset> parse_hog_preset(const std::string& text);  // the inverse
+HogOptions hog_preset(HogPreset preset);
 
 class HogPeopleDetector : public PeopleDetector {
  public:

@@ -15,7 +15,7 @@ namespace bodyrec {
 namespace {
 
 TEST(HogPreset, ThesisPresetIsTheThesisCall) {
-  const HogOptions o = hog_preset("thesis");
+  const HogOptions o = hog_preset(HogPreset::kThesis);
   EXPECT_DOUBLE_EQ(o.hit_threshold, -0.2);
   EXPECT_EQ(o.win_stride, 12);
   EXPECT_EQ(o.padding, 16);
@@ -26,7 +26,7 @@ TEST(HogPreset, ThesisPresetIsTheThesisCall) {
 }
 
 TEST(HogPreset, DefaultSearchesSixtyToHundredFortyPixelPeople) {
-  const HogOptions o = hog_preset("default");
+  const HogOptions o = hog_preset(HogPreset::kDefault);
   // The body is 0.75 of the 128-px window: 96 px at scale 1. A 60-px person needs a 1.6x resize.
   EXPECT_NEAR(o.resize, 1.6, 1e-9);
   // Levels reach 140 px: 1.08^(levels-1) >= 140/60.
@@ -35,8 +35,26 @@ TEST(HogPreset, DefaultSearchesSixtyToHundredFortyPixelPeople) {
   EXPECT_TRUE(o.motion_roi);
 }
 
+TEST(HogPreset, OpenCvPresetIsThePeopledetectSample) {
+  const HogOptions o = hog_preset(HogPreset::kOpenCv);
+  EXPECT_DOUBLE_EQ(o.hit_threshold, 0.0);
+  EXPECT_EQ(o.win_stride, 8);
+  EXPECT_EQ(o.padding, 0);
+  EXPECT_DOUBLE_EQ(o.scale, 1.05);
+  EXPECT_EQ(o.group_threshold, 2);
+  EXPECT_FALSE(o.motion_roi);
+  // The sample's shrink: x + 10 %, y + 7 %, 80 % of the width and height.
+  const Box body = HogPeopleDetector(o).body_box(Box(100, 200, 64, 128));
+  EXPECT_NEAR(body.x, 106.4, 1e-9);
+  EXPECT_NEAR(body.y, 208.96, 1e-9);
+  EXPECT_NEAR(body.width, 51.2, 1e-9);
+  EXPECT_NEAR(body.height, 102.4, 1e-9);
+}
+
 TEST(HogPreset, UnknownPresetAndBadOptionsAreUsageErrors) {
-  EXPECT_THROW(hog_preset("fast"), UsageError);
+  EXPECT_FALSE(parse_hog_preset("fast"));
+  EXPECT_EQ(parse_hog_preset("opencv"), HogPreset::kOpenCv);
+  EXPECT_EQ(parse_hog_model("daimler"), HogModel::kDaimler);
   HogOptions o;
   o.scale = 1.0;
   EXPECT_THROW(o.check(), UsageError);
@@ -46,7 +64,7 @@ TEST(HogPreset, UnknownPresetAndBadOptionsAreUsageErrors) {
 }
 
 TEST(HogPeopleDetector, BodyBoxIsShrunkFromTheWindow) {
-  HogPeopleDetector detector(hog_preset("thesis"));
+  HogPeopleDetector detector(hog_preset(HogPreset::kThesis));
   const Box body = detector.body_box(Box(100, 200, 64, 128));
   EXPECT_NEAR(body.width, 32, 1e-9);
   EXPECT_NEAR(body.height, 96, 1e-9);
@@ -55,10 +73,10 @@ TEST(HogPeopleDetector, BodyBoxIsShrunkFromTheWindow) {
 }
 
 TEST(HogPeopleDetector, BlankFrameHasNoPeopleAndTinyFrameDoesNotCrash) {
-  HogPeopleDetector detector(hog_preset("thesis"));
+  HogPeopleDetector detector(hog_preset(HogPreset::kThesis));
   EXPECT_TRUE(detector.detect(cv::Mat(240, 320, CV_8UC3, cv::Scalar(128, 128, 128))).empty());
   EXPECT_TRUE(detector.detect(cv::Mat(10, 10, CV_8UC3, cv::Scalar(0, 0, 0))).empty());
-  HogPeopleDetector with_motion(hog_preset("default"));
+  HogPeopleDetector with_motion(hog_preset(HogPreset::kDefault));
   for (int i = 0; i < 3; ++i)
     EXPECT_TRUE(with_motion.detect(cv::Mat(240, 320, CV_8UC3, cv::Scalar(90, 90, 90))).empty());
 }
@@ -68,7 +86,7 @@ TEST(HogPeopleDetector, DetectNearFindsThePeopleTheFullSearchFoundAndNothingElse
   cv::VideoCapture video(testing::vtest_path().string());
   cv::Mat frame;
   ASSERT_TRUE(video.read(frame));
-  HogPeopleDetector detector(hog_preset("default"));
+  HogPeopleDetector detector(hog_preset(HogPreset::kDefault));
   const auto full = detector.detect(frame);  // first frame: the whole frame is searched
   ASSERT_GE(full.size(), 5u);
   std::vector<Box> expected;
@@ -94,7 +112,7 @@ TEST(HogPeopleDetector, RawWindowsAreOpenCvsWithTheirOwnScores) {
   cv::VideoCapture video(testing::vtest_path().string());
   cv::Mat frame;
   ASSERT_TRUE(video.read(frame));
-  HogOptions o = hog_preset("thesis");
+  HogOptions o = hog_preset(HogPreset::kThesis);
   o.group_threshold = 0;
   HogPeopleDetector detector(o);
   const std::vector<Detection> ours = detector.detect_windows(frame, cv::Rect(0, 0, frame.cols, frame.rows));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <utility>
 #include <vector>
 
 #include "bodyrec/core/geometry.h"
@@ -34,6 +35,12 @@ class DetectionEvaluator {
 
   DetectionScores scores() const;
 
+  // Percentile bootstrap of the AP over frames: `resamples` draws, each of as many frames as were added,
+  // picked with replacement (std::mt19937_64 seeded with `seed`, so the interval is reproducible); returns
+  // the central `level` interval of the draws' APs. Frames are the unit, so this is the noise of a figure
+  // over independent images; for a video's correlated frames it is too narrow. {0, 0} without frames.
+  std::pair<double, double> ap_interval(int resamples, double level = 0.95, unsigned long long seed = 1) const;
+
  private:
   struct Scored {
     double score;
@@ -41,6 +48,8 @@ class DetectionEvaluator {
   };
   double iou_threshold_;
   std::vector<Scored> scored_;
+  std::vector<size_t> frame_begin_;    // each frame's first entry in scored_
+  std::vector<int> frame_truth_;       // each frame's non-ignored ground-truth boxes
   int ground_truth_ = 0;
   int frames_ = 0;
 };

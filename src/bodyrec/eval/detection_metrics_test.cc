@@ -59,6 +59,31 @@ TEST(DetectionEvaluator, NoTruthOrNoDetections) {
   EXPECT_DOUBLE_EQ(e.scores().precision, 0.0);
 }
 
+TEST(DetectionEvaluator, BootstrapIntervalResamplesFrames) {
+  DetectionEvaluator none;
+  EXPECT_EQ(none.ap_interval(100), std::make_pair(0.0, 0.0));
+  // Every frame perfect: every draw has AP 1.
+  DetectionEvaluator perfect;
+  for (int f = 0; f < 5; ++f) perfect.add_frame({{Box(0, 0, 10, 20), 0.9}}, {truth(f, Box(0, 0, 10, 20))});
+  EXPECT_EQ(perfect.ap_interval(200), std::make_pair(1.0, 1.0));
+  // Ten frames, half found by a confident hit, half missed with a confident false alarm: AP 0.5 for the whole
+  // set, and the draws spread around it. A fixed seed gives the same interval.
+  DetectionEvaluator mixed;
+  for (int f = 0; f < 10; ++f) {
+    const Box person(0, 0, 10, 20);
+    mixed.add_frame({{f % 2 ? Box(50, 0, 10, 20) : person, f % 2 ? 0.9 : 0.8}}, {truth(f, person)});
+  }
+  EXPECT_NEAR(mixed.scores().ap, 0.5 * 0.5, 1e-12);  // recall 0.5, reached at precision 0.5
+  const auto interval = mixed.ap_interval(1000);
+  EXPECT_LT(interval.first, 0.2);
+  EXPECT_GT(interval.second, 0.3);
+  EXPECT_LE(interval.first, interval.second);
+  EXPECT_EQ(mixed.ap_interval(1000), interval);
+  const auto narrow = mixed.ap_interval(1000, 0.5);
+  EXPECT_GE(narrow.first, interval.first);
+  EXPECT_LE(narrow.second, interval.second);
+}
+
 TEST(AveragePrecision, PerfectRankingIsOneAndWorstRankingIsLow) {
   EXPECT_DOUBLE_EQ(average_precision({{0.9, true}, {0.8, true}, {0.1, false}}, 2), 1.0);
   // FP first: precision 0, 1/2, 2/3 at recall 0, 1/2, 1 -> envelope 2/3 everywhere -> AP 2/3.

@@ -1,108 +1,56 @@
-// The group-leader pipeline after tracking (thesis Ch4): motion -> group membership -> roles -> leader
-// tracking -> leader direction, one call per frame. Data flows one way: tracks in, a GroupFrame out.
+// The whole group-leader pipeline of thesis Ch4, frame by frame: people detection and tracking
+// (tracking/detect_and_track.h), then motion, groups, roles, leader tracking and direction (GroupStages).
+// What `bodyrec groups` and `eval roles` run; a program of its own uses it the same way:
 //
-// Role modes:
-//  - "groups" (default): groups from trajectories (GroupMembership, on the ground plane when a
-//    GroundPlane is given, else in pixels scaled by an estimated pixels-per-metre), one leader per group
-//    (TrajectoryRoles), a DSST leader tracker and a direction per group.
-//  - "thesis": Table 4.1 with permanent tags; "voting": the 50-frame voting variant. Both have one
-//    group (id 1: the leader and its members) as in the thesis.
+//   HogPeopleDetector detector(HogPeopleOptions::preset(HogPreset::kDefault));
+//   GroupPipeline groups(detector, {}, read_tsai_calibration("View_001.xml"));  // or nullptr: pixels
+//   for (Frame f; source.read(f);) {
+//     const GroupPipelineResult r = groups.process(f);  // r.groups.people: id, box, role, group; r.groups.leaders
+//   }
 #pragma once
 
-#include <map>
 #include <memory>
-#include <optional>
-#include <string>
 #include <vector>
 
-#include <opencv2/core.hpp>
-
-#include "bodyrec/detection/differential_motion.h"
-#include "bodyrec/groups/group_membership.h"
-#include "bodyrec/groups/leader_direction.h"
-#include "bodyrec/groups/leader_tracker.h"
-#include "bodyrec/groups/roles.h"
-#include "bodyrec/groups/trajectory_roles.h"
+#include "bodyrec/detection/people_detector.h"
+#include "bodyrec/groups/group_stages.h"
 #include "bodyrec/io/frame_source.h"
 #include "bodyrec/io/ground_plane.h"
-#include "bodyrec/tracking/tracker.h"
+#include "bodyrec/tracking/detect_and_track.h"
 
 namespace bodyrec {
 
 struct GroupPipelineOptions {
-  std::string roles = "groups";  // "groups", "thesis" or "voting"
-  DifferentialMotionOptions motion;
-  ThesisRoleOptions thesis;
-  TrajectoryRoleOptions trajectory;
-  GroupOptions membership;
-  LeaderTrackerOptions leader;
-  LeaderDirectionOptions direction;
-  double pixels_per_metre = 0;   // without a ground plane; 0 = from the first boxes (a person is 1.7 m)
-  void check() const;            // throws UsageError naming the option
+  DetectAndTrackOptions tracking;
+  GroupStagesOptions stages;
+  // Frames per second for times and speeds; 0 = the frames' own times (Frame::time_s). A video whose header
+  // is wrong (vtest.avi says 10, was recorded at 7) needs it.
+  double fps = 0;
+  void check() const;  // UsageError naming the field
 };
 
-struct PersonView {
-  int id = -1;
-  Box box;
-  TrackState state = TrackState::kConfirmed;
-  Role role = Role::kUnknown;
-  int group = -1;                        // -1: in no group
-  double motion_energy = 0;              // fraction of the box's pixels that moved
-  std::optional<cv::Point2d> ground;     // metres on the ground plane (when one is given)
-};
-
-struct LeaderView {
-  int group = -1;
-  LeaderStatus status;
-  std::optional<Direction> direction;
-};
-
-// Milliseconds spent per stage on this frame.
-struct StageTimes {
-  double motion = 0, groups = 0, roles = 0, leader = 0, flow = 0;
-};
-
-struct GroupFrame {
-  std::vector<PersonView> people;   // sorted by id
-  std::vector<LeaderView> leaders;  // sorted by group
-  bool motion_valid = false;
-  std::optional<Box> motion_box;
-  double motion_deviation = 0;
-  StageTimes ms;
+struct GroupPipelineResult {
+  double time_s = 0;                  // the frame's time on the pipeline's time base
+  std::vector<TrackedPerson> tracks;  // the tracker's report, boxes rounded as the outputs write them
+  bool detected = false;              // the full detector ran on this frame (else a local search or prediction)
+  GroupFrame groups;                  // motion, people with roles and groups, leaders, per-stage times
+  double tracking_ms = 0;             // detection + tracking on this frame
 };
 
 class GroupPipeline {
  public:
-  // `ground` may be null (work in pixels). Calls options.check().
-  GroupPipeline(const GroupPipelineOptions& options, std::shared_ptr<const GroundPlane> ground);
-  ~GroupPipeline();
-  // One frame at time `t_seconds` (increasing) with the tracker's reported tracks for it.
-  GroupFrame process(const cv::Mat& image, double t_seconds, const std::vector<TrackedPerson>& tracks);
-  const GroupPipelineOptions& options() const { return options_; }
-  double pixels_per_metre() const { return pixels_per_metre_; }
+  // `detector` must outlive the pipeline; `ground` may be null (distances in pixels scaled by the people's
+  // box heights). Calls options.check().
+  GroupPipeline(PeopleDetector& detector, const GroupPipelineOptions& options,
+                std::shared_ptr<const GroundPlane> ground);
+  // One frame (frames in order).
+  GroupPipelineResult process(const Frame& frame);
+  const GroupStages& stages() const { return stages_; }
 
  private:
-  struct Leader {
-    LeaderTracker tracker;
-    LeaderDirection direction;
-    int last_id = -1;
-  };
-  // Set roles and groups in `out`; return group id -> leader id.
-  std::map<int, int> assign_thesis(GroupFrame& out, int frame_index);
-  std::map<int, int> assign_groups(GroupFrame& out, double t);
-  void track_leaders(GroupFrame& out, const std::vector<TrackedPerson>& tracks, const std::map<int, int>& leaders);
-
   GroupPipelineOptions options_;
-  std::shared_ptr<const GroundPlane> ground_;
-  DifferentialMotion motion_;
-  std::optional<ThesisRoles> thesis_;
-  std::optional<GroupMembership> membership_;
-  TrajectoryRoles trajectory_;
-  std::map<int, Leader> leaders_;  // by group id
-  std::map<int, int> last_seen_;   // track id -> frame counter, to forget ended tracks
-  cv::Mat grey_, previous_grey_;
-  double pixels_per_metre_ = 0;
-  int frames_ = 0;
+  DetectAndTrack tracking_;
+  GroupStages stages_;
 };
 
 }  // namespace bodyrec

@@ -11,20 +11,9 @@
 #include <opencv2/core/types.hpp>
 
 #include "bodyrec/core/geometry.h"
+#include "bodyrec/core/role.h"
 
 namespace bodyrec {
-
-// The thesis's tags: 1 member, 2 non-member, 3 leader are permanent, 4 potential member is transient.
-// kUnknown: not assigned yet (no leader found so far).
-enum class Role { kUnknown = 0, kMember = 1, kNonMember = 2, kLeader = 3, kPotentialMember = 4 };
-
-// "unknown", "member", "non-member", "leader", "potential-member".
-std::string to_string(Role role);
-// The inverse, also accepting "non_member"/"nonmember" and "potential"; nullopt for anything else.
-std::optional<Role> parse_role(const std::string& text);
-// The thesis's drawing colours (BGR): leader blue, member green, non-member red; potential member orange,
-// unknown white. One definition for the annotated video and the HTML report.
-cv::Scalar role_color(Role role);
 
 // One tracked person on one frame, as the role logic sees it.
 struct RoleInput {

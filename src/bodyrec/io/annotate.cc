@@ -4,6 +4,17 @@
 
 namespace bodyrec {
 
+cv::Scalar role_color(Role role) {
+  switch (role) {
+    case Role::kLeader: return colors::kBlue;
+    case Role::kMember: return colors::kGreen;
+    case Role::kNonMember: return colors::kRed;
+    case Role::kPotentialMember: return colors::kOrange;
+    case Role::kUnknown: break;
+  }
+  return colors::kWhite;
+}
+
 cv::Scalar id_color(int id) {
   cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar((id * 137) % 180, 220, 255)), bgr;
   cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);

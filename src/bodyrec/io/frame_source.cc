@@ -171,6 +171,15 @@ bool is_image_path(const std::string& path) {
                      [&](const char* e) { return ext == e; });
 }
 
+std::unique_ptr<FrameSource> open_image_list(std::vector<std::string> files, const std::string& description,
+                                             const SourceOptions& options) {
+  SourceOptions selection = options;  // the files are the input: only the frame selection is checked
+  selection.path = description;
+  selection.camera = -1;
+  selection.check();
+  return std::make_unique<ImageListSource>(std::move(files), description, options);
+}
+
 std::unique_ptr<FrameSource> open_source(const SourceOptions& o) {
   o.check();
   if (o.camera >= 0) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
@@ -44,6 +45,12 @@ class FrameSource {
 // Opens a source. Throws InputError (naming the path) when it is missing, unreadable, of an unknown
 // kind, an empty directory or a glob matching nothing; UsageError on bad options.
 std::unique_ptr<FrameSource> open_source(const SourceOptions& options);
+
+// The image files `files` in the given order as one source (frame i = files[i]), with --start, --every and
+// --max-frames applied; `description` names it in messages. A file that cannot be decoded is an InputError
+// when it is read. REQUIRES: files is not empty.
+std::unique_ptr<FrameSource> open_image_list(std::vector<std::string> files, const std::string& description,
+                                             const SourceOptions& options);
 
 // True when the path's extension is an image format OpenCV reads (png, jpg, jpeg, bmp, tif, tiff, ppm,
 // pgm, webp), case-insensitive.

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "bodyrec/core/geometry.h"
-#include "bodyrec/groups/roles.h"
+#include "bodyrec/core/role.h"
 
 namespace bodyrec {
 

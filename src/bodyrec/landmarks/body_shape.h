@@ -21,6 +21,10 @@ class BodyMaskNet;
 // Chosen on the Penn-Fudan validation people (docs/benchmarks.md, "Several thresholds").
 inline const std::vector<double> kDefaultThresholdOffsets = {-2.0, -1.0, 0.0, 1.0, 2.0};
 
+// The body shape model bodyrec ships (models/README.md: two mask networks trained on Penn-Fudan), found with
+// find_model_file (core/model_files.h).
+constexpr const char* kShippedShapeModel = "body-shape.dat";
+
 class BodyShapeModel {
  public:
   enum class Kind { kTrees, kMaskNet };

@@ -11,6 +11,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/imglab_xml.h"
+#include "bodyrec/io/pennfudan.h"
 #include "bodyrec/landmarks/landmark_dataset.h"
 
 namespace fs = std::filesystem;
@@ -76,12 +77,7 @@ ContourSetReport build_pennfudan_contour_set(const ContourSetOptions& options) {
   options.check();
   const fs::path root(options.pennfudan_dir);
   const fs::path images_dir = root / "PNGImages";
-  if (!fs::is_directory(images_dir)) throw InputError(images_dir.string() + ": not a folder (expected Penn-Fudan)");
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(images_dir))
-    if (entry.path().extension() == ".png") names.push_back(entry.path().filename().string());
-  if (names.empty()) throw InputError(images_dir.string() + ": no .png images");
-  std::sort(names.begin(), names.end());
+  const std::vector<std::string> names = pennfudan_image_names(options.pennfudan_dir);
 
   const fs::path out(options.out_dir);
   std::error_code ec;
@@ -99,7 +95,7 @@ ContourSetReport build_pennfudan_contour_set(const ContourSetOptions& options) {
   ContourSetReport report;
 
   for (size_t i = 0; i < names.size(); ++i) {
-    const bool is_test = i % 4 == 3;
+    const bool is_test = pennfudan_is_test(i);
     const std::string stem = fs::path(names[i]).stem().string();
     const fs::path image_path = images_dir / names[i];
     const fs::path mask_path = root / "PedMasks" / (stem + "_mask.png");

@@ -39,7 +39,7 @@ Box grow_box(const Box& box, double margin, const cv::Size& image_size);
 // The box of the left-right mirrored image of width `image_width`.
 Box mirror_box(const Box& box, int image_width);
 
-// Builds the set. Split: image file names sorted, 0-based index i, i % 4 == 3 -> test, else train.
+// Builds the set. Split: pennfudan_is_test over the sorted image names (io/pennfudan.h: i % 4 == 3 -> test).
 // People whose contour is skipped stay in the XML as ignore boxes without parts, so that detector
 // training does not count them as background. Throws InputError naming the file for a missing folder,
 // image, mask or annotation; ProcessingError when the outputs cannot be written.

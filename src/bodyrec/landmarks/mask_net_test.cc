@@ -20,7 +20,7 @@
 #include "bodyrec/landmarks/contour.h"
 #include "bodyrec/landmarks/landmark_metrics.h"
 #include "bodyrec/landmarks/shape_training.h"
-#include "synthetic_silhouette.h"
+#include "silhouette_dataset.h"
 #include "test_support.h"
 
 namespace bodyrec {
@@ -51,7 +51,7 @@ std::string model_header(const BodyMaskNet& net, int version, int networks) {
 
 ShapeTrainOptions small_net(int iterations) {
   ShapeTrainOptions o;
-  o.method = "mask-net";
+  o.method = ShapeMethod::kMaskNet;
   o.net.input_width = 24;
   o.net.input_height = 64;
   o.net.iterations = iterations;

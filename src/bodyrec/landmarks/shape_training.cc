@@ -28,9 +28,16 @@ ShapeCorrection shape_correction(const BodyShapeModel& model, const LandmarkData
 
 }  // namespace
 
+const char* to_string(ShapeMethod method) { return method == ShapeMethod::kTrees ? "trees" : "mask-net"; }
+
+std::optional<ShapeMethod> parse_shape_method(const std::string& text) {
+  if (text == "mask-net") return ShapeMethod::kMaskNet;
+  if (text == "trees") return ShapeMethod::kTrees;
+  return std::nullopt;
+}
+
 void ShapeTrainOptions::check() const {
-  if (method != "mask-net" && method != "trees") throw UsageError("--method must be mask-net or trees");
-  if (method == "mask-net") net.check();
+  if (method == ShapeMethod::kMaskNet) net.check();
   if (oversampling < 1) throw UsageError("--oversampling must be >= 1");
   if (!(nu > 0 && nu <= 1)) throw UsageError("--nu must be in (0, 1]");
   if (tree_depth < 1 || tree_depth > 10) throw UsageError("--tree-depth must be in [1, 10]");
@@ -45,7 +52,7 @@ void ShapeTrainOptions::check() const {
 
 BodyShapeModel train_body_shape(const LandmarkDataset& data, const ShapeTrainOptions& options) {
   options.check();
-  if (options.method == "trees") return train_trees(data, options);
+  if (options.method == ShapeMethod::kTrees) return train_trees(data, options);
   MaskNetTrainOptions net = options.net;
   net.verbose = net.verbose || options.verbose;
   BodyShapeModel model = ShapeModelAccess::make(train_body_mask_net(data, net), data.landmarks);

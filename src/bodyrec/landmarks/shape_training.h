@@ -3,6 +3,7 @@
 // the thesis used oversampling 500, nu 0.05, tree depth 2 on 4 images).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "bodyrec/landmarks/body_shape.h"
@@ -11,8 +12,14 @@
 
 namespace bodyrec {
 
+// How a body shape model places the landmarks: a per-pixel body mask network and its outline, or the
+// thesis's ensemble of regression trees.
+enum class ShapeMethod { kMaskNet, kTrees };
+const char* to_string(ShapeMethod method);                        // "mask-net", "trees"
+std::optional<ShapeMethod> parse_shape_method(const std::string& text);  // the inverse
+
 struct ShapeTrainOptions {
-  std::string method = "mask-net";  // "mask-net" or "trees"
+  ShapeMethod method = ShapeMethod::kMaskNet;
   MaskNetTrainOptions net;          // method mask-net
   // Method trees (dlib::shape_predictor_trainer):
   int oversampling = 20;          // random initial shapes per training person

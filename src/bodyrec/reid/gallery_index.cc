@@ -4,7 +4,7 @@
 
 namespace bodyrec {
 
-GalleryIndex::GalleryIndex(const Gallery& gallery, const AppearanceMatcher& matcher,
+GalleryIndex::GalleryIndex(const GalleryCache& gallery, const AppearanceMatcher& matcher,
                            std::function<bool(const GalleryEntry&)> accept,
                            std::function<DescriptorView(const GalleryEntry&)> descriptor)
     : gallery_(gallery), matcher_(matcher), accept_(std::move(accept)), descriptor_(std::move(descriptor)) {

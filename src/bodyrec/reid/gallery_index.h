@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "bodyrec/reid/appearance_matcher.h"
-#include "bodyrec/store/gallery.h"
+#include "bodyrec/store/gallery_cache.h"
 
 namespace bodyrec {
 
@@ -22,7 +22,7 @@ class GalleryIndex {
  public:
   // `accept` says which scans count (the matcher's, in the current layout); `descriptor` gives a scan's
   // descriptor as the matcher compares it. `gallery` and `matcher` must outlive the index.
-  GalleryIndex(const Gallery& gallery, const AppearanceMatcher& matcher,
+  GalleryIndex(const GalleryCache& gallery, const AppearanceMatcher& matcher,
                std::function<bool(const GalleryEntry&)> accept,
                std::function<DescriptorView(const GalleryEntry&)> descriptor);
 
@@ -44,7 +44,7 @@ class GalleryIndex {
   uint32_t slot_of(UserId user);
   void put(ViewRows& view, uint32_t slot, const GalleryEntry* entry);
 
-  const Gallery& gallery_;
+  const GalleryCache& gallery_;
   const AppearanceMatcher& matcher_;
   std::function<bool(const GalleryEntry&)> accept_;
   std::function<DescriptorView(const GalleryEntry&)> descriptor_;

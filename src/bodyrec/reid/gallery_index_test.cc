@@ -4,6 +4,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/reid/stripe_features.h"
+#include "bodyrec/store/gallery.h"
 #include "test_support.h"
 
 namespace bodyrec {

@@ -2,105 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
 
 namespace bodyrec {
 namespace {
 
-// The matcher's descriptor of a stored scan (current layout: without the body measurements), where the
-// gallery's cache holds it.
-DescriptorView appearance_of(const GalleryEntry& e) {
-  CV_Assert(e.features.type() == CV_32F && e.features.isContinuous());
-  const size_t n = e.features.total();
-  return {e.features.ptr<float>(), n >= kBodyFeatures ? n - kBodyFeatures : 0};
-}
-
-// The stature stored with a scan, if any.
-std::optional<double> stature_of(const GalleryEntry& e) {
-  if (e.features.total() < static_cast<size_t>(kBodyFeatures)) return std::nullopt;
-  const float s = e.features.ptr<float>()[e.features.total() - kBodyFeatures];
-  return std::isfinite(s) ? std::optional<double>(s) : std::nullopt;
-}
-
 // Measurements that say what a body's stature is now (the last half second).
 constexpr int kRecentStatures = 15;
 
-cv::Mat features_mat(const std::vector<float>& descriptor, std::optional<double> stature, int count) {
-  cv::Mat m(1, static_cast<int>(descriptor.size()) + kBodyFeatures, CV_32F);
-  float* p = m.ptr<float>();
-  std::copy(descriptor.begin(), descriptor.end(), p);
-  p[descriptor.size()] = stature ? static_cast<float>(*stature) : std::numeric_limits<float>::quiet_NaN();
-  p[descriptor.size() + 1] = static_cast<float>(count);
-  return m;
-}
-
-EventKind store_kind(ReidEventKind kind) {
-  switch (kind) {
-    case ReidEventKind::kEnrolled: return EventKind::kEnrolled;
-    case ReidEventKind::kRecognised: return EventKind::kRecognised;
-    case ReidEventKind::kViewAdded: return EventKind::kViewAdded;
-    case ReidEventKind::kLeft: return EventKind::kLeft;
-  }
-  return EventKind::kRecognised;
-}
-
 }  // namespace
 
-int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher) {
-  const std::string descriptor = matcher.name() + "/" + matcher.version();
-  const std::string family = matcher.name() + "/";
-  // This matcher's scans made by another version of it (its descriptor, its model, or the layout).
-  const auto stale = [&](const std::string& d, int version) {
-    if (d.compare(0, family.size(), family) != 0) return false;  // another matcher's: ignored
-    if (d == descriptor && version > kReidDescriptorVersion)
-      throw InputError(gallery.path() + ": scans of " + d + " in layout version " + std::to_string(version) +
-                       ", newer than this bodyrec's " + std::to_string(kReidDescriptorVersion) + ": use a newer bodyrec");
-    return d != descriptor || version != kReidDescriptorVersion;
-  };
-  std::vector<UserId> users;
-  for (View v : kAllViews)
-    for (const GalleryEntry& e : gallery.scans(v))
-      if (stale(e.descriptor, e.descriptor_version) && std::find(users.begin(), users.end(), e.user) == users.end())
-        users.push_back(e.user);
-  if (users.empty()) return 0;
-  std::vector<std::pair<UserId, StoredScan>> old;
-  for (UserId u : users)
-    for (StoredScan& s : gallery.user_scans(u))
-      if (stale(s.descriptor, s.descriptor_version)) old.emplace_back(u, std::move(s));
-  for (const auto& [u, s] : old)
-    if (s.image_png.empty())
-      throw InputError(gallery.path() + ": " + std::to_string(old.size()) + " scans (user " + std::to_string(u) +
-                       " among them) hold " + s.descriptor + " features (layout " + std::to_string(s.descriptor_version) +
-                       "); this bodyrec describes with " + descriptor + " (layout " +
-                       std::to_string(kReidDescriptorVersion) +
-                       ") and they have no image to describe again (kept with --no-images): forget those users "
-                       "(bodyrec gallery forget USER) or start a new gallery");
-  gallery.transaction([&] {
-    for (const auto& [u, s] : old) {
-      const cv::Mat image = cv::imdecode(s.image_png, cv::IMREAD_COLOR);
-      cv::Mat mask = s.mask_png.empty() ? cv::Mat() : cv::imdecode(s.mask_png, cv::IMREAD_GRAYSCALE);
-      if (image.empty() || (!mask.empty() && mask.size() != image.size()))
-        throw InputError(gallery.path() + ": user " + std::to_string(u) + " view " + view_name(s.view) +
-                         ": the stored image or mask cannot be decoded");
-      GalleryScan g;
-      g.view = s.view;
-      g.image = image;
-      g.mask = mask;
-      g.features = features_mat(matcher.describe(PersonImage{image, mask}), std::nullopt, 0);
-      g.descriptor = descriptor;
-      g.descriptor_version = kReidDescriptorVersion;
-      g.quality = s.quality;
-      g.time = s.time;
-      gallery.put_scan(u, g);
-    }
-  });
-  return static_cast<int>(old.size());
+const char* reid_outcome_name(ReidOutcome outcome) {
+  switch (outcome) {
+    case ReidOutcome::kWaiting: return "waiting";
+    case ReidOutcome::kRecognised: return "recognised";
+    case ReidOutcome::kEnrolled: return "enrolled";
+    case ReidOutcome::kStatureWait: return "stature_wait";
+    case ReidOutcome::kVerified: return "verified";
+    case ReidOutcome::kStrike: return "strike";
+    case ReidOutcome::kReleased: return "released";
+    case ReidOutcome::kUserErased: return "user_erased";
+  }
+  return "?";
 }
 
 const char* reid_event_name(ReidEventKind kind) {
@@ -135,15 +60,13 @@ void OnlineReidOptions::check() const {
   if (!(stature_cap >= 0)) throw UsageError("reid: stature cap must not be negative");
 }
 
-OnlineReid::OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, OnlineReidOptions options)
-    : gallery_(gallery), matcher_(matcher), options_(std::move(options)) {
+OnlineReid::OnlineReid(ReidStore& store, const AppearanceMatcher& matcher, OnlineReidOptions options)
+    : store_(store), matcher_(matcher), options_(std::move(options)) {
   options_.check();
   descriptor_ = matcher_.name() + "/" + matcher_.version();
-  debug_ = std::getenv("BODYREC_REID_DEBUG") != nullptr;
   threshold_ = std::isnan(options_.threshold) ? matcher_.threshold() : options_.threshold;
-  redescribe_old_scans(gallery_, matcher_);
   index_ = std::make_unique<GalleryIndex>(
-      gallery_, matcher_, [this](const GalleryEntry& e) { return comparable(e); }, appearance_of);
+      store_, matcher_, [this](const GalleryEntry& e) { return comparable(e); }, appearance_of);
 }
 
 void OnlineReid::changed(std::optional<UserId> user) {
@@ -167,7 +90,7 @@ bool OnlineReid::usable(const ReidBody& body) const {
 // Whether a scan of this quality would be stored for the user's view: the view is missing, was made by
 // another matcher, or is clearly worse.
 bool OnlineReid::improves(UserId user, View view, double quality) const {
-  const GalleryEntry* stored = gallery_.find(user, view);
+  const GalleryEntry* stored = store_.find(user, view);
   return !stored || !comparable(*stored) || quality > options_.update_gain * stored->quality;
 }
 
@@ -213,7 +136,7 @@ std::vector<OnlineReid::Score> OnlineReid::score_users(const Probe& probe, std::
       if (same_side && (!b.side || s > *b.side)) b.side = s;
     };
     if (only) {
-      const GalleryEntry* e = gallery_.find(*only, v);
+      const GalleryEntry* e = store_.find(*only, v);
       if (e && comparable(*e)) consider(best[0], *only, matcher_.similarity(probe.descriptor, appearance_of(*e)));
       continue;
     }
@@ -244,10 +167,10 @@ const std::map<UserId, double>& OnlineReid::user_statures() {
   // Per user, the stature of the scan with the most measurements behind it (the longest look).
   std::map<UserId, std::pair<double, float>> all;
   for (View v : kAllViews)
-    for (const GalleryEntry& e : gallery_.scans(v))
+    for (const GalleryEntry& e : store_.scans(v))
       if (comparable(e))
         if (const auto s = stature_of(e)) {
-          const float n = e.features.ptr<float>()[e.features.total() - 1];
+          const float n = stature_count_of(e);
           const auto it = all.find(e.user);
           if (it == all.end() || n > it->second.second) all[e.user] = {*s, n};
         }
@@ -285,48 +208,56 @@ GalleryScan OnlineReid::gallery_scan(const Probe& probe, const Track& track) con
   g.view = probe.view;
   g.image = probe.scan.image;
   g.mask = probe.scan.mask;
-  g.features = features_mat(probe.descriptor, track.stature.estimate(), track.stature.count());
+  g.features = reid_features(probe.descriptor, track.stature.estimate(), track.stature.count());
   g.descriptor = descriptor_;
   g.descriptor_version = kReidDescriptorVersion;
   g.quality = probe.quality;
   return g;
 }
 
-void OnlineReid::log(const ReidEvent& event) {
-  Event e;
-  e.user = event.user;
-  e.kind = store_kind(event.kind);
-  e.score = event.score;
-  e.view = event.view;
-  e.track = static_cast<int64_t>(event.track);
-  e.source = options_.source;
-  gallery_.log_event(e);
+bool OnlineReid::report(const ReidEvent& event, ReidStep& out) {
+  if (!store_.log(event, now_)) return false;
+  out.events.push_back(event);
+  return true;
 }
 
-void OnlineReid::enrol(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
+ReidTrace::Scan OnlineReid::trace_scan(const Probe& probe, const std::vector<Score>& scores) {
+  ReidTrace::Scan t;
+  t.view = probe.view;
+  t.quality = probe.quality;
+  for (size_t i = 0; i < scores.size() && i < 3; ++i)
+    t.best.push_back({scores[i].user, scores[i].similarity, scores[i].stature, scores[i].view});
+  return t;
+}
+
+void OnlineReid::drop_user(uint64_t key, Track& track, ReidStep& out) {
+  if (options_.trace) out.trace.push_back({key, ReidOutcome::kUserErased, track.user, track.stature.estimate(), {}});
+  track.user.reset();
+  track.probes.clear();
+  track.beside.clear();
+  track.strikes = 0;
+  track.frames = 0;
+}
+
+void OnlineReid::enrol(uint64_t key, Track& track, ReidStep& out) {
   // The best probe per view; the best of all is the enrolment scan.
   const std::map<View, const Probe*> best = best_per_view(track.probes, std::vector<bool>(track.probes.size(), true));
   const Probe* first = nullptr;
   for (const auto& [v, p] : best)
     if (!first || p->quality > first->quality) first = p;
-  UserId user = 0;
-  gallery_.transaction([&] {
-    user = gallery_.enrol(gallery_scan(*first, track), "", static_cast<int64_t>(key), options_.source);
-    for (const auto& [v, p] : best)
-      if (p != first) gallery_.put_scan(user, gallery_scan(*p, track));
-  });
-  changed(user);
-  events.push_back({ReidEventKind::kEnrolled, user, key, first->view, std::nullopt});
+  std::vector<GalleryScan> scans{gallery_scan(*first, track)};
   for (const auto& [v, p] : best)
-    if (p != first) {
-      events.push_back({ReidEventKind::kViewAdded, user, key, v, std::nullopt});
-      log(events.back());
-    }
+    if (p != first) scans.push_back(gallery_scan(*p, track));
+  const UserId user = store_.enrol(scans, key, now_);
+  changed(user);
+  out.events.push_back({ReidEventKind::kEnrolled, user, key, first->view, std::nullopt});
   track.user = user;
   track.last_verify = frame_;
+  for (const auto& [v, p] : best)
+    if (p != first) report({ReidEventKind::kViewAdded, user, key, v, std::nullopt}, out);
 }
 
-void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
+void OnlineReid::decide(uint64_t key, Track& track, ReidStep& out) {
   // Users seen in another body while this one was in view (now or earlier) are someone else.
   std::vector<UserId> held = users_held_except(key);
   held.insert(held.end(), track.beside.begin(), track.beside.end());
@@ -342,22 +273,17 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
   std::vector<int64_t> voted_for(track.probes.size(), -1);
   int for_new = 0;
   const std::optional<double> stature = track.stature.estimate();
+  ReidTrace trace{key, ReidOutcome::kWaiting, std::nullopt, stature, {}};
   for (size_t i = 0; i < track.probes.size(); ++i) {
     std::vector<Score> s;
     for (const Score& x : with_stature(scores(track.probes[i]), stature))
       if (std::find(held.begin(), held.end(), x.user) == held.end()) s.push_back(x);
-    if (debug_) {
-      std::fprintf(stderr, "decide track %llu scan %zu view %s quality %.2f stature %.3f:", static_cast<unsigned long long>(key), i,
-                   view_name(track.probes[i].view), track.probes[i].quality, stature ? *stature : 0.0);
-      for (const Score& x : s)
-        std::fprintf(stderr, " u%lld %.3f(%s%s)", static_cast<long long>(x.user), x.similarity, view_name(x.view),
-                     x.stature < 0 ? (" st " + std::to_string(x.stature).substr(0, 5)).c_str() : "");
-      std::fprintf(stderr, "\n");
-    }
+    if (options_.trace) trace.scans.push_back(trace_scan(track.probes[i], s));
     // "New": nobody passes the threshold in a comparison of the same side of the body (same or
     // complementary view: reliable), or even the best is far below it (across views).
     if (s.empty() || s.front().similarity < threshold_ - new_gap || (s.front().near && s.front().similarity <= threshold_)) {
       ++for_new;
+      if (options_.trace) trace.scans.back().votes_new = true;
       continue;
     }
     if (s.front().similarity <= threshold_) continue;  // between "same" and "someone else": no vote
@@ -369,7 +295,14 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     stature_agrees[u] = stature && user_statures().count(u) && s.front().stature == 0;
     views[u] = track.probes[i].view;
     voted_for[i] = u;
+    if (options_.trace) trace.scans.back().vote = u;
   }
+  const auto done = [&](ReidOutcome outcome, std::optional<UserId> user) {
+    if (!options_.trace) return;
+    trace.outcome = outcome;
+    trace.user = user;
+    out.trace.push_back(std::move(trace));
+  };
   const int n = static_cast<int>(track.probes.size());
   UserId winner = 0;
   int most = 0;
@@ -380,17 +313,21 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
   // clearly (new_gap above the threshold), and the stature measured and matching.
   const bool sure = most == n && n >= options_.sure_after && weakest[winner] >= threshold_ + new_gap &&
                     stature_agrees[winner];
-  if (n < options_.decide_after && !forced && !sure) return;
+  if (n < options_.decide_after && !forced && !sure) return done(ReidOutcome::kWaiting, std::nullopt);
   // A body whose stature is not measured yet (head not in view) is not recognised as a user whose
   // stature is known before stature_wait_frames or max_wait: two people who dress alike differ in
   // stature more often than not.
   const bool stature_pending = options_.stature_weight > 0 && !stature && user_statures().count(winner) && !forced &&
                                track.frames < options_.stature_wait_frames;
   if (!stature_pending && (sure || 2 * most > n || (forced && most > 0 && most >= for_new))) {
+    if (!report({ReidEventKind::kRecognised, winner, key, views[winner], sums[winner] / most}, out)) {
+      // The winner was erased a moment ago: its scans go when the store is refreshed; decide again then.
+      drop_user(key, track, out);
+      return;
+    }
+    done(ReidOutcome::kRecognised, winner);
     track.user = winner;
     track.last_verify = frame_;
-    events.push_back({ReidEventKind::kRecognised, winner, key, views[winner], sums[winner] / most});
-    log(events.back());
     // A track that held this user but is not in this frame was the same body under an older key.
     for (auto& [k, t] : tracks_)
       if (k != key && t.user == winner) t.last_seen = -1e300;
@@ -399,28 +336,26 @@ void OnlineReid::decide(uint64_t key, Track& track, std::vector<ReidEvent>& even
     for (size_t i = 0; i < voted.size(); ++i) voted[i] = voted_for[i] == winner;
     for (const auto& [v, p] : best_per_view(track.probes, voted)) {
       if (!improves(winner, v, p->quality)) continue;
-      const PutResult put = gallery_.put_scan(winner, gallery_scan(*p, track));
+      const std::optional<PutResult> put = store_.put_scan(winner, gallery_scan(*p, track), now_);
+      if (!put) return drop_user(key, track, out);
       changed(winner);
-      if (put == PutResult::kInserted) {
-        events.push_back({ReidEventKind::kViewAdded, winner, key, v, std::nullopt});
-        log(events.back());
-      }
+      if (*put == PutResult::kInserted) report({ReidEventKind::kViewAdded, winner, key, v, std::nullopt}, out);
     }
   } else if (stature_pending && 2 * most > n) {
-    return;  // recognised by appearance; wait for the stature to confirm it
+    return done(ReidOutcome::kStatureWait, winner);  // recognised by appearance; wait for the stature
   } else if (2 * for_new > n || (forced && for_new > 0 && for_new >= most) ||
              track.frames >= 3 * options_.max_wait_frames) {
     // (Scans that all fall between "same" and "someone else" wait three times longer before enrolling:
     // that is more often a known person half hidden or turned than a new one.)
-    enrol(key, track, events);
+    enrol(key, track, out);
+    done(ReidOutcome::kEnrolled, track.user);
   } else {
-    return;  // undecided (too close to call, or contradicting scans): collect more
+    return done(ReidOutcome::kWaiting, std::nullopt);  // too close to call, or contradicting: collect more
   }
   track.probes.clear();
 }
 
-void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::vector<ReidEvent>& events,
-                        int& described) {
+void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, ReidStep& out) {
   if (!usable(body)) return;
   const UserId user = *track.user;
   const View view = *body.view.view;
@@ -430,14 +365,15 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   track.last_describe = frame_;
   std::optional<Probe> probe = describe(body);
   if (!probe) return;
-  ++described;
+  ++out.described;
   std::optional<Score> mine;
   double best_other = -std::numeric_limits<double>::infinity();
   // The track's own user by appearance alone (its stored stature may come from this very track's
   // earlier, rougher estimate); everyone else with the stature term, and only when the scan may be
   // stored (below): a check alone scores the track's user only.
   const std::optional<UserId> only = better ? std::nullopt : std::optional<UserId>(user);
-  for (const Score& s : with_stature(score_users(*probe, only), track.stature.estimate()))
+  const std::vector<Score> scored = with_stature(score_users(*probe, only), track.stature.estimate());
+  for (const Score& s : scored)
     if (s.user == user) mine = s, mine->similarity -= s.stature, mine->stature = 0;
     else best_other = std::max(best_other, s.similarity);
   const double clear_miss = threshold_ - options_.new_gap * std::abs(threshold_);
@@ -451,20 +387,17 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
     // the appearance).
     const auto now = track.stature.estimate(kRecentStatures);
     const auto them = user_statures().find(user);
-    if (debug_)
-      std::fprintf(stderr, "step %d verify track %llu user %lld view %s quality %.2f: best %.3f (%s), same side %s, stature %.3f (user %.3f)\n",
-                   frame_ - 1, static_cast<unsigned long long>(key), static_cast<long long>(user), view_name(view), probe->quality,
-                   mine ? mine->similarity : 0.0, mine ? view_name(mine->view) : "-",
-                   side ? std::to_string(*mine->same_side).c_str() : "none", now ? *now : 0.0,
-                   them != user_statures().end() ? them->second : 0.0);
     const bool same_stature = options_.stature_weight > 0 && now && them != user_statures().end() &&
                               std::abs(*now - them->second) <= options_.stature_tolerance_m;
     if (side && probe->quality >= options_.verify_quality)
       track.strikes = *mine->same_side < clear_miss ? track.strikes + 1 : 0;
-    if (track.strikes >= options_.strikes * (same_stature ? 2 : 1)) {
+    const bool release = track.strikes >= options_.strikes * (same_stature ? 2 : 1);
+    if (options_.trace)
+      out.trace.push_back({key, release ? ReidOutcome::kReleased : track.strikes ? ReidOutcome::kStrike : ReidOutcome::kVerified,
+                           user, now, {trace_scan(*probe, scored)}});
+    if (release) {
       // Not this user any more: release it and decide the body afresh from this scan on.
-      events.push_back({ReidEventKind::kLeft, user, key, std::nullopt, std::nullopt});
-      log(events.back());
+      report({ReidEventKind::kLeft, user, key, std::nullopt, std::nullopt}, out);
       track.user.reset();
       track.beside.clear();  // (the failed user stays a candidate: a check can fail on a turned body)
       track.strikes = 0;
@@ -478,27 +411,22 @@ void OnlineReid::update(uint64_t key, Track& track, const ReidBody& body, std::v
   if (!better || track.strikes > 0 || !mine) return;
   const bool ok = mine->near ? mine->similarity > threshold_ : best_other <= threshold_ && mine->similarity > clear_miss;
   if (!ok) return;
-  const PutResult put = gallery_.put_scan(user, gallery_scan(*probe, track));
+  const std::optional<PutResult> put = store_.put_scan(user, gallery_scan(*probe, track), now_);
+  if (!put) return drop_user(key, track, out);
   changed(user);
-  if (put == PutResult::kInserted) {
-    events.push_back({ReidEventKind::kViewAdded, user, key, view, std::nullopt});
-    log(events.back());
-  }
+  if (*put == PutResult::kInserted) report({ReidEventKind::kViewAdded, user, key, view, std::nullopt}, out);
 }
 
-void OnlineReid::leave(uint64_t key, Track& track, std::vector<ReidEvent>& events) {
+void OnlineReid::leave(uint64_t key, Track& track, ReidStep& out) {
   // A pending track with enough evidence (decide_after scans, or seen for max_wait frames) is decided
   // as it leaves, so a short visit still enrols; a glimpse (a segment that flickered into view for a
   // few frames) leaves nothing behind.
   const bool visit = static_cast<int>(track.probes.size()) >= options_.decide_after || track.frames >= options_.max_wait_frames;
   if (!track.user && !track.probes.empty() && visit) {
     track.frames = std::max(track.frames, options_.max_wait_frames);
-    decide(key, track, events);
+    decide(key, track, out);
   }
-  if (track.user) {
-    events.push_back({ReidEventKind::kLeft, *track.user, key, std::nullopt, std::nullopt});
-    log(events.back());
-  }
+  if (track.user) report({ReidEventKind::kLeft, *track.user, key, std::nullopt, std::nullopt}, out);
 }
 
 bool OnlineReid::wants_scan(uint64_t track, const ViewEstimate& view) const {
@@ -514,7 +442,12 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
   ++frame_;
   now_ = time_s;
   ReidStep out;
-  if (gallery_.refresh()) changed(std::nullopt);
+  if (store_.refresh()) {
+    changed(std::nullopt);
+    // Users erased by another process: their bodies are decided afresh.
+    for (auto& [key, track] : tracks_)
+      if (track.user && !store_.has_user(*track.user)) drop_user(key, track, out);
+  }
   for (const ReidBody& b : bodies) {
     Track& t = tracks_[b.track];
     t.last_seen = time_s;
@@ -535,15 +468,15 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
       }
       const int n = static_cast<int>(t.probes.size());
       if (n >= std::min(options_.decide_after, options_.sure_after) || (n > 0 && t.frames >= options_.max_wait_frames))
-        decide(b.track, t, out.events);
+        decide(b.track, t, out);
     } else {
-      update(b.track, t, b, out.events, out.described);
+      update(b.track, t, b, out);
     }
     out.identities.push_back({b.track, t.user, b.view.view, b.box});
   }
   for (auto it = tracks_.begin(); it != tracks_.end();) {
     if (it->second.last_seen < time_s - options_.left_after_s) {
-      leave(it->first, it->second, out.events);
+      leave(it->first, it->second, out);
       it = tracks_.erase(it);
     } else {
       ++it;
@@ -553,10 +486,10 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
 }
 
 std::vector<ReidEvent> OnlineReid::finish() {
-  std::vector<ReidEvent> events;
-  for (auto& [key, track] : tracks_) leave(key, track, events);
+  ReidStep out;
+  for (auto& [key, track] : tracks_) leave(key, track, out);
   tracks_.clear();
-  return events;
+  return out.events;
 }
 
 }  // namespace bodyrec

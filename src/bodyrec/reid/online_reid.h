@@ -29,8 +29,14 @@
 //    scans, or after max_wait frames in view, is decided first with what it has (as after max_wait); a
 //    glimpse (fewer scans and frames: a segment that flickered into view) leaves nothing behind.
 // A user who comes back gets a new track and is recognised again from the gallery.
+// A user erased meanwhile (another process's `gallery forget`, taken in by the store's refresh() at the next
+// step) is dropped: a body that was that user is decided afresh, and nothing of the user is written back.
 //
-//   OnlineReid reid(gallery, *matcher);
+// The decisions know nothing of storage: they read and write a ReidStore (reid_store.h), a persistent
+// gallery (GalleryReidStore) or memory (MemoryReidStore).
+//
+//   GalleryReidStore store(gallery, *matcher, {"camera 0"});
+//   OnlineReid reid(store, *matcher);
 //   for (each frame) {
 //     std::vector<ReidBody> bodies = ...;  // track, view, scan (optional), box
 //     const ReidStep out = reid.step(time_s, bodies);   // out.identities[i].user, out.events
@@ -53,7 +59,9 @@
 #include "bodyrec/reid/body_measures.h"
 #include "bodyrec/reid/gallery_index.h"
 #include "bodyrec/reid/partial_scan.h"
-#include "bodyrec/store/gallery.h"
+#include "bodyrec/reid/reid_event.h"
+#include "bodyrec/reid/reid_features.h"
+#include "bodyrec/reid/reid_store.h"
 
 namespace bodyrec {
 
@@ -96,7 +104,7 @@ struct OnlineReidOptions {
   double stature_tolerance_m = 0.04;
   double stature_weight = 0.1;
   double stature_cap = 1.6;
-  std::string source;           // recording or camera name written with the gallery's events
+  bool trace = false;           // fill ReidStep::trace with every decision's evidence
   void check() const;           // UsageError naming the field
 };
 
@@ -109,17 +117,6 @@ struct ReidBody {
   cv::Rect box;                   // colour pixels, for the output only
 };
 
-enum class ReidEventKind { kEnrolled, kRecognised, kViewAdded, kLeft };
-const char* reid_event_name(ReidEventKind kind);  // "enrolled", "recognised", "view_added", "left"
-
-struct ReidEvent {
-  ReidEventKind kind = ReidEventKind::kRecognised;
-  UserId user = 0;
-  uint64_t track = 0;
-  std::optional<View> view;     // the view matched / added / enrolled with
-  std::optional<double> score;  // recognised: the winning mean similarity
-};
-
 struct ReidIdentity {
   uint64_t track = 0;
   std::optional<UserId> user;   // none while the track is still collecting evidence
@@ -127,36 +124,56 @@ struct ReidIdentity {
   cv::Rect box;
 };
 
+// Why a decision came out as it did (OnlineReidOptions::trace): the evidence of one decision or check.
+enum class ReidOutcome {
+  kWaiting,        // pending: not enough evidence yet
+  kRecognised,
+  kEnrolled,
+  kStatureWait,    // recognised by appearance; waiting for the body's stature to confirm it
+  kVerified,       // an assigned track's check passed (or could not fail)
+  kStrike,         // an assigned track's check failed
+  kReleased,       // too many failed checks: the user is released and the body decided afresh
+  kUserErased,     // the track's user was erased from the gallery: decided afresh
+};
+const char* reid_outcome_name(ReidOutcome outcome);
+
+struct ReidCandidate {
+  UserId user = 0;
+  double similarity = 0;  // appearance + stature term
+  double stature = 0;     // the stature term in it (<= 0)
+  View view = View::F;    // the user's view it was compared with
+};
+
+struct ReidTrace {
+  uint64_t track = 0;
+  ReidOutcome outcome = ReidOutcome::kWaiting;
+  std::optional<UserId> user;        // recognised / enrolled / checked / released user
+  std::optional<double> stature_m;   // the track's stature estimate
+  struct Scan {
+    View view = View::F;
+    double quality = 0;
+    std::vector<ReidCandidate> best;  // the three best candidates (users held by other bodies left out)
+    std::optional<UserId> vote;       // the user it voted for
+    bool votes_new = false;           // it voted "new person"
+  };
+  std::vector<Scan> scans;           // a decision: every scan; a check: the one checked
+};
+
 struct ReidStep {
   std::vector<ReidIdentity> identities;  // one per input body, same order
   std::vector<ReidEvent> events;
+  std::vector<ReidTrace> trace;          // with OnlineReidOptions::trace
   int described = 0;                     // scans described this frame (what costs)
 };
 
-// Layout of the features OnlineReid stores per scan: the matcher's descriptor, then kBodyFeatures
-// floats of body measurements (stature in metres or NaN, and the number of frames it is the median of).
-// Version 1 stored the matcher's descriptor alone.
-constexpr int kReidDescriptorVersion = 2;
-constexpr int kBodyFeatures = 2;
-
-// Brings a gallery's scans made by another version of `matcher` (same name, another version() string,
-// e.g. stripes1 before stripes2 or another learned model, or an older kReidDescriptorVersion layout) up
-// to date: each is described again from its stored image and mask (stature and row heights unknown: the
-// image is taken to span the body) and replaced, in one transaction. Returns how many were. Throws
-// InputError naming the gallery when such a scan has no image (a gallery kept with --no-images): its
-// features cannot be rebuilt, and matching them would be wrong; also for a layout newer than this
-// build's. Scans of other matchers are left alone (ignored).
-int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher);
-
 class OnlineReid {
  public:
-  // `gallery` and `matcher` must outlive this object. Gallery scans of another matcher (name and
-  // version) are ignored for matching and replaced when this matcher stores that view; this matcher's
-  // scans of an older layout are described again first (redescribe_old_scans, InputError as it says).
-  OnlineReid(Gallery& gallery, const AppearanceMatcher& matcher, OnlineReidOptions options = {});
+  // `store` and `matcher` must outlive this object. Stored scans of another matcher (name and version)
+  // are ignored for matching and replaced when this matcher stores that view.
+  OnlineReid(ReidStore& store, const AppearanceMatcher& matcher, OnlineReidOptions options = {});
 
-  // One frame, bodies of that frame; time_s increasing. Writes to the gallery (enrolments, views,
-  // events) as decisions are made; each write is its own transaction (an enrolment with all its views one).
+  // One frame, bodies of that frame; time_s increasing. Writes to the store (enrolments, views, events)
+  // as decisions are made.
   ReidStep step(double time_s, const std::vector<ReidBody>& bodies);
   // Decides pending tracks that have enough scans (as leave does) and ends every track (`left`), e.g. at
   // the end of a recording.
@@ -213,28 +230,31 @@ class OnlineReid {
   // The best probe per view among those with use[i].
   static std::map<View, const Probe*> best_per_view(const std::vector<Probe>& probes, const std::vector<bool>& use);
   std::optional<Probe> describe(const ReidBody& body) const;
-  void decide(uint64_t key, Track& track, std::vector<ReidEvent>& events);
-  void enrol(uint64_t key, Track& track, std::vector<ReidEvent>& events);
-  void update(uint64_t key, Track& track, const ReidBody& body, std::vector<ReidEvent>& events, int& described);
+  void decide(uint64_t key, Track& track, ReidStep& out);
+  void enrol(uint64_t key, Track& track, ReidStep& out);
+  void update(uint64_t key, Track& track, const ReidBody& body, ReidStep& out);
   std::vector<UserId> users_held_except(uint64_t key) const;
-  void leave(uint64_t key, Track& track, std::vector<ReidEvent>& events);
+  void leave(uint64_t key, Track& track, ReidStep& out);
+  // The track's user was erased: the body is decided afresh (from its next scans).
+  void drop_user(uint64_t key, Track& track, ReidStep& out);
   bool comparable(const GalleryEntry& entry) const;  // made by this matcher in the current layout
-  // The gallery changed: every cache is stale; the index takes `user`'s scans again (none: all of them).
+  // The store changed: every cache is stale; the index takes `user`'s scans again (none: all of them).
   void changed(std::optional<UserId> user);
   GalleryScan gallery_scan(const Probe& probe, const Track& track) const;
-  void log(const ReidEvent& event);
+  // Reports the event and logs it in the store; false (nothing reported) when the user was erased.
+  bool report(const ReidEvent& event, ReidStep& out);
+  static ReidTrace::Scan trace_scan(const Probe& probe, const std::vector<Score>& scores);
 
-  Gallery& gallery_;
+  ReidStore& store_;
   const AppearanceMatcher& matcher_;
   OnlineReidOptions options_;
   std::string descriptor_;  // matcher name/version as stored in the gallery
   double threshold_ = 0;
-  bool debug_ = false;  // BODYREC_REID_DEBUG set: every decision's scores on stderr
   std::map<uint64_t, Track> tracks_;
   int frame_ = 0;
   double now_ = 0;
   std::unique_ptr<GalleryIndex> index_;  // this matcher's scans, searched by score_users
-  int64_t gallery_version_ = 0;  // bumped by every gallery write and by refresh() loading others' writes
+  int64_t gallery_version_ = 0;  // bumped by every store write and by refresh() loading others' writes
   std::map<UserId, double> user_statures_;
   int64_t statures_at_ = -1;     // gallery_version_ of user_statures_
 };

@@ -18,7 +18,7 @@
 #include <optional>
 #include <string>
 
-#include "bodyrec/reid/view.h"
+#include "bodyrec/core/view.h"
 #include "bodyrec/rgbd/recording.h"
 
 namespace bodyrec {

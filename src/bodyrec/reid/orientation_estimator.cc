@@ -53,10 +53,12 @@ std::optional<cv::Vec3d> top_of_body(const cv::Mat& depth, double unit, const In
 
 }  // namespace
 
-ViewMethod parse_view_method(const std::string& name) {
+const char* view_method_name(ViewMethod method) { return method == ViewMethod::kThesis ? "thesis" : "robust"; }
+
+std::optional<ViewMethod> parse_view_method(const std::string& name) {
   if (name == "robust") return ViewMethod::kRobust;
   if (name == "thesis") return ViewMethod::kThesis;
-  throw UsageError("--views: unknown method '" + name + "' (robust or thesis)");
+  return std::nullopt;
 }
 
 void OrientationOptions::check() const {

@@ -34,8 +34,10 @@
 namespace bodyrec {
 
 enum class ViewMethod { kRobust, kThesis };
-// "robust" or "thesis"; UsageError otherwise.
-ViewMethod parse_view_method(const std::string& name);
+// "robust" or "thesis".
+const char* view_method_name(ViewMethod method);
+// The inverse; nullopt for anything else.
+std::optional<ViewMethod> parse_view_method(const std::string& name);
 
 struct OrientationOptions {
   ViewMethod method = ViewMethod::kRobust;

@@ -4,7 +4,7 @@
 #include <map>
 #include <set>
 
-#include "bodyrec/reid/view.h"
+#include "bodyrec/core/view.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
 #include "bodyrec/report/svg.h"

@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "bodyrec/groups/roles.h"
+#include "bodyrec/core/role.h"
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"

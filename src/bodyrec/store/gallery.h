@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bodyrec/store/gallery_cache.h"
 #include "bodyrec/store/gallery_types.h"
 
 namespace bodyrec {
@@ -46,14 +47,14 @@ struct GalleryOptions {
 constexpr int kGallerySchemaVersion = 1;
 
 // One Gallery object per thread (it owns one SQLite connection); several processes may share a file.
-class Gallery {
+class Gallery : public GalleryCache {
  public:
   // Opens (or creates) the gallery at `path` and loads the feature cache.
   // Throws InputError naming the file when it is missing (without create), not an SQLite database,
   // another application's database, or from a newer schema ("... schema version N, this bodyrec reads
   // up to 1"). Older schemas are upgraded in one transaction (not in read_only mode: InputError).
   Gallery(const std::string& path, const GalleryOptions& options = {});
-  ~Gallery();
+  ~Gallery() override;
   Gallery(const Gallery&) = delete;
   Gallery& operator=(const Gallery&) = delete;
 
@@ -105,11 +106,11 @@ class Gallery {
   // kept in step with this object's writes; no database access. Other processes' writes show after
   // refresh(). The reference stays valid, but its contents change with this object's next write or
   // refresh.
-  const std::vector<GalleryEntry>& scans(View view) const { return cache_[static_cast<int>(view)]; }
+  const std::vector<GalleryEntry>& scans(View view) const override { return cache_[static_cast<int>(view)]; }
   // The cached scan of one user and view, or nullptr (no database access). The pipeline checks a
   // candidate's quality against it before calling put_scan, which costs a commit (and an fsync) even
   // when it keeps the stored scan.
-  const GalleryEntry* find(UserId user, View view) const;
+  const GalleryEntry* find(UserId user, View view) const override;
   // Reloads the cache when another connection changed the file (PRAGMA data_version: cheap, no I/O
   // when nothing changed). Returns true when it reloaded. Call it once per frame or per decision.
   bool refresh();

@@ -11,7 +11,7 @@
 
 #include <opencv2/core/mat.hpp>
 
-#include "bodyrec/reid/view.h"
+#include "bodyrec/core/view.h"
 
 namespace bodyrec {
 

@@ -4,10 +4,16 @@
 
 namespace bodyrec {
 
+const char* to_string(BetweenDetections mode) { return mode == BetweenDetections::kPredict ? "predict" : "local"; }
+
+std::optional<BetweenDetections> parse_between_detections(const std::string& text) {
+  if (text == "local") return BetweenDetections::kLocal;
+  if (text == "predict") return BetweenDetections::kPredict;
+  return std::nullopt;
+}
+
 void DetectAndTrackOptions::check() const {
-  if (detect_every < 1) throw UsageError("--detect-every must be >= 1");
-  if (between != "local" && between != "predict")
-    throw UsageError("--between must be 'local' or 'predict' (got '" + between + "')");
+  if (detect_every < 1) throw UsageError("DetectAndTrackOptions.detect_every must be >= 1");
   tracker.check();
 }
 
@@ -19,7 +25,7 @@ DetectAndTrack::DetectAndTrack(PeopleDetector& detector, const DetectAndTrackOpt
 std::vector<TrackedPerson> DetectAndTrack::step(int frame_index, const cv::Mat& image) {
   last_full_ = steps_++ % options_.detect_every == 0;
   if (last_full_) return tracker_.update(frame_index, detector_.detect(image));
-  if (options_.between == "predict") return tracker_.predict_only(frame_index);
+  if (options_.between == BetweenDetections::kPredict) return tracker_.predict_only(frame_index);
   // Only tracks matched on the previous frame are searched: a track on still clutter, which the full
   // (motion-region) detector stopped confirming, must not be kept alive by local searches.
   std::vector<Box> expected;

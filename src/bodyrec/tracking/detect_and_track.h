@@ -9,6 +9,7 @@
 //   }
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,13 +18,17 @@
 
 namespace bodyrec {
 
+// What happens on the frames between full detections: kLocal = detect_near around the tracks matched on the
+// previous frame (detections there only extend tracks, never start one); kPredict = Kalman prediction only.
+enum class BetweenDetections { kLocal, kPredict };
+const char* to_string(BetweenDetections mode);                             // "local", "predict"
+std::optional<BetweenDetections> parse_between_detections(const std::string& text);  // the inverse
+
 struct DetectAndTrackOptions {
   TrackerOptions tracker;
   int detect_every = 2;  // run the full detector on every Nth frame given to step()
-  // Frames between full detections: "local" = detect_near around the tracks matched on the previous
-  // frame (detections there only extend tracks, never start one); "predict" = Kalman prediction only.
-  std::string between = "local";
-  void check() const;  // throws UsageError naming the option
+  BetweenDetections between = BetweenDetections::kLocal;
+  void check() const;  // throws UsageError naming the field
 };
 
 class DetectAndTrack {

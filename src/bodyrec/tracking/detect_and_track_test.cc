@@ -75,15 +75,15 @@ TEST(DetectAndTrack, PredictModeNeverSearchesAndBadOptionsAreUsageErrors) {
   ScriptedDetector detector;
   DetectAndTrackOptions o;
   o.detect_every = 3;
-  o.between = "predict";
+  o.between = BetweenDetections::kPredict;
   DetectAndTrack tracking(detector, o);
   for (int i = 0; i < 7; ++i) tracking.step(i, cv::Mat());
   EXPECT_EQ(detector.calls, "FFF");
   o.detect_every = 0;
   EXPECT_THROW(DetectAndTrack(detector, o), UsageError);
-  o.detect_every = 1;
-  o.between = "nearby";
-  EXPECT_THROW(DetectAndTrack(detector, o), UsageError);
+  EXPECT_FALSE(parse_between_detections("nearby"));
+  EXPECT_EQ(parse_between_detections("predict"), BetweenDetections::kPredict);
+  EXPECT_STREQ(to_string(BetweenDetections::kLocal), "local");
 }
 
 }  // namespace

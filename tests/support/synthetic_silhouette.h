@@ -11,8 +11,6 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "bodyrec/landmarks/contour.h"
-#include "bodyrec/landmarks/landmark_dataset.h"
 #include "test_support.h"
 
 namespace bodyrec::testing {
@@ -104,27 +102,6 @@ inline void make_pennfudan_like(const std::filesystem::path& root) {
     }
     write_text(root / "Annotation" / (stem + ".txt"), text);
   }
-}
-
-// `count` images of `size`, each with one drawn person of `height` px (seeds first_seed, first_seed + 1, ...)
-// whose box and `landmarks` landmarks come from its mask's outline; image paths are `name` + index.
-inline LandmarkDataset silhouette_dataset(int count, uint64_t first_seed, int landmarks, cv::Size size, int height,
-                                          const std::string& name) {
-  LandmarkDataset data;
-  data.landmarks = landmarks;
-  ContourOptions o;
-  o.landmarks = landmarks;
-  for (int i = 0; i < count; ++i) {
-    const Silhouette s = make_silhouette(size, height, first_seed + static_cast<uint64_t>(i));
-    const BodyContour c = contour_from_mask(s.mask, o);
-    EXPECT_EQ(c.status, ContourStatus::kOk);
-    AnnotatedImage image;
-    image.path = name + std::to_string(i);
-    image.image = s.image;
-    image.people.push_back({Box(c.bounds), c.points, false});
-    data.images.push_back(std::move(image));
-  }
-  return data;
 }
 
 }  // namespace bodyrec::testing

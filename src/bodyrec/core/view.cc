@@ -1,4 +1,4 @@
-#include "bodyrec/reid/view.h"
+#include "bodyrec/core/view.h"
 
 namespace bodyrec {
 

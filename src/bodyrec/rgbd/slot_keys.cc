@@ -1,4 +1,4 @@
-#include "bodyrec/tracking/slot_keys.h"
+#include "bodyrec/rgbd/slot_keys.h"
 
 #include "bodyrec/core/error.h"
 
