@@ -22,17 +22,19 @@ struct EvalReidCommand {
 
   void run() {
     // Unknown name, unreadable model or bad option: fail before reading images. Without --model a
-    // learning matcher is trained on each split's training people (never on its test people).
-    const auto probe = model.empty() ? make_untrained_matcher(matcher) : make_matcher(matcher, model);
+    // learning matcher is trained on each split's training people (never on its test people); with
+    // --train-ids 0 there are none, and the default matcher uses its shipped model (models/README.md).
     if (!resize.empty()) eval.resize = parse_image_size(resize, "--resize");
     eval.check();
-    if (model.empty() && probe->learns() && eval.train_ids == 0)
-      throw UsageError("matcher " + matcher + " learns: give --train-ids > 0 or --model (--matcher lomo needs neither)");
+    const bool learn = model.empty() && make_untrained_matcher(matcher)->learns() && eval.train_ids != 0;
+    if (model.empty() && !learn && matcher == "lomo-xqda")
+      throw UsageError("matcher lomo-xqda learns: give --train-ids > 0 or --model");
+    if (!learn) (void)make_matcher(matcher, model);
     const ReidDataset data = scan_reid_dataset(dataset.root, dataset.id_regex, dataset.cam_regex);
-    eval.learn = model.empty();  // a given model is used as is in every split
+    eval.learn = learn;  // a given or shipped model is used as is in every split
     const std::string name = matcher, model_path = model;
     const ReidEvalResult r = evaluate_reid(
-        data, [&] { return model_path.empty() ? make_untrained_matcher(name) : make_matcher(name, model_path); }, eval);
+        data, [&] { return learn ? make_untrained_matcher(name) : make_matcher(name, model_path); }, eval);
     const int probe_camera = eval.swap_cameras ? 1 : 0;
     std::printf("matcher       %s\n", r.matcher.c_str());
     std::printf("images        %zu (%zu identities, %zu in both cameras; cameras '%s' -> '%s'; %d files skipped)%s\n",
@@ -44,7 +46,7 @@ struct EvalReidCommand {
     std::printf("CMC           rank-1 %.2f %%  rank-5 %.2f %%  rank-10 %.2f %%  rank-20 %.2f %%\n", 100 * r.rank1,
                 100 * r.rank5, 100 * r.rank10, 100 * r.rank20);
     std::printf("mAP           %.2f %%\n", 100 * r.map);
-    if (eval.learn && probe->learns())
+    if (learn)
       for (size_t s = 0; s < r.rank1_per_split.size(); ++s)
         std::printf("split %-7zu rank-1 %.2f %%  mAP %.2f %%  %s\n", s, 100 * r.rank1_per_split[s],
                     100 * r.map_per_split[s], r.matcher_per_split[s].c_str());
@@ -90,7 +92,8 @@ void add(CLI::App& eval) {
   sub->add_option("--seed", command->eval.seed, "Seed of the splits")->capture_default_str();
   sub->add_option("--matcher", command->matcher, "default | lomo-xqda | lomo | stripes | kaze")->capture_default_str();
   sub->add_option("--model", command->model,
-                  "Model from `bodyrec train-reid` for default or lomo-xqda, used as is in every split (not retrained)");
+                  "Model from `bodyrec train-reid` for default or lomo-xqda, used as is in every split (not "
+                  "retrained); with --train-ids 0 and no --model, default uses the shipped model");
   sub->add_flag("--swap-cameras", command->eval.swap_cameras,
                 "Probes from the second camera, gallery from the first (the other direction)");
   sub->add_option("--resize", command->resize,

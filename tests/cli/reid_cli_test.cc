@@ -160,7 +160,6 @@ TEST(TrainReidCli, PublishedRecipeModelsAndWrongMatchers) {
   std::vector<std::string> unlearned = {"train-reid", "--matcher", "lomo", "--out", (dir / "x.yml").string()};
   unlearned.insert(unlearned.end(), data.begin(), data.end());
   expect_one_line_error(run_bodyrec(unlearned), 2, "lomo");
-  expect_one_line_error(run_bodyrec(eval_args({"--train-ids", "0"})), 2, "--train-ids");
   expect_one_line_error(run_bodyrec(eval_args({"--matcher", "lomo-xqda", "--train-ids", "0"})), 2, "--model");
 }
 
@@ -178,6 +177,14 @@ TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
                                   {"env", "BODYREC_MODELS=" + dir.path().string()});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(last_json_line(r.out)["matcher"], "default");
+  // eval reid with no training people: the default matcher uses that model as is, on every person.
+  const RunResult e = run_bodyrec(eval_args({"--train-ids", "0", "--splits", "1"}),
+                                  {"env", "BODYREC_MODELS=" + dir.path().string()});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(last_json_line(e.out)["probes"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(last_json_line(e.out)["rank1"].get<double>(), 1.0);
+  EXPECT_TRUE(contains(e.out, "matcher       variant ")) << e.out;
+  EXPECT_FALSE(contains(e.out, "split 0")) << e.out;
   // The published recipe ships no model: online it needs --model.
   expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec.string(), "--bodies-from", "skeleton", "--max-frames",
                                      "5", "--matcher", "lomo-xqda"}),
