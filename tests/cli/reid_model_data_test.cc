@@ -3,7 +3,7 @@
 // the model's own training people (rank-1 is 100 %), so the share of different-person pairs rejected at its
 // threshold is what tells models apart: a reproducibility figure, not an accuracy figure (docs/benchmarks.md
 // has those, measured on people the models did not see). The first test takes about 2 min wall, the
-// retraining test about 15 min (train-reid on all of VIPeR, then one evaluation) on the loaded 2-core machine.
+// retraining test 19 min (train-reid on all of VIPeR, then one evaluation) on the loaded 2-core machine.
 #include <filesystem>
 
 #include <gtest/gtest.h>
