@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/gog_features.h"
 #include "bodyrec/reid/kaze_matcher.h"
 #include "bodyrec/reid/lomo_features.h"
 
@@ -42,13 +43,22 @@ BENCHMARK(BM_LomoFeatures)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-// What the default matcher computes per image before its model: LOMO twice (plain and Retinex colours),
-// each mirror-averaged.
+// GOG in one colour space (the default matcher computes four).
+void BM_GogFeatures(benchmark::State& state) {
+  const cv::Size size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  bodyrec::PersonImage image = body(1, size);
+  if (size.width == 48) image.mask = cv::Mat();
+  for (auto _ : state) benchmark::DoNotOptimize(bodyrec::gog_features(image, bodyrec::GogColour::kRgb));
+}
+BENCHMARK(BM_GogFeatures)->Args({48, 128})->Args({100, 250})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// What the default matcher computes per image before its model: LOMO's parts (both colour versions, with
+// and without mirror averaging) and GOG in four colour spaces.
 void BM_DefaultMatcherFeatures(benchmark::State& state) {
   const cv::Size size(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   bodyrec::PersonImage image = body(1, size);
   if (size.width == 48) image.mask = cv::Mat();
-  const auto matcher = bodyrec::make_matcher("default");
+  const auto matcher = bodyrec::make_untrained_matcher("default");
   for (auto _ : state) benchmark::DoNotOptimize(matcher->features(image));
 }
 BENCHMARK(BM_DefaultMatcherFeatures)->Args({48, 128})->Args({100, 250})->Unit(benchmark::kMillisecond)->UseRealTime();

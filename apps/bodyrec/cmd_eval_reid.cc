@@ -19,33 +19,55 @@ struct EvalReidCommand {
   ReidDatasetOptions dataset;
   ReidEvalOptions eval;
   std::string matcher = "default";
-  std::string model;
+  std::string model, resize;
   bool json = false;
 
   void run() {
-    (void)make_matcher(matcher, model);  // unknown name or unreadable model: fail before reading images
+    // Unknown name, unreadable model or bad option: fail before reading images. Without --model a
+    // learning matcher is trained on each split's training people (never on its test people); with
+    // --train-ids 0 there are none, and the default matcher uses its shipped model (models/README.md).
+    if (!resize.empty()) eval.resize = parse_image_size(resize, "--resize");
     eval.check();
+    const bool learn = model.empty() && make_untrained_matcher(matcher)->learns() && eval.train_ids != 0;
+    if (model.empty() && !learn && matcher == "lomo-xqda")
+      throw UsageError("matcher lomo-xqda learns: give --train-ids > 0 or --model");
+    if (!learn) (void)make_matcher(matcher, model);
     const ReidDataset data = scan_reid_dataset(dataset.root, dataset.id_regex, dataset.cam_regex);
-    eval.learn = model.empty();  // a given model is used as is in every split
+    eval.learn = learn;  // a given or shipped model is used as is in every split
     const std::string name = matcher, model_path = model;
-    const ReidEvalResult r = evaluate_reid(data, [&] { return make_matcher(name, model_path); }, eval);
+    const ReidEvalResult r = evaluate_reid(
+        data, [&] { return learn ? make_untrained_matcher(name) : make_matcher(name, model_path); }, eval);
+    const int probe_camera = eval.swap_cameras ? 1 : 0;
     std::printf("matcher       %s\n", r.matcher.c_str());
-    std::printf("images        %zu (%zu identities, %zu in both cameras; cameras '%s' -> '%s'; %d files skipped)\n",
-                data.images.size(), data.identities.size(), data.in_both.size(), data.cameras[0].c_str(),
-                data.cameras[1].c_str(), data.skipped);
+    std::printf("images        %zu (%zu identities, %zu in both cameras; cameras '%s' -> '%s'; %d files skipped)%s\n",
+                data.images.size(), data.identities.size(), data.in_both.size(),
+                data.cameras[probe_camera].c_str(), data.cameras[1 - probe_camera].c_str(), data.skipped,
+                eval.resize.empty() ? "" : (", resampled to " + resize).c_str());
     std::printf("splits        %d (seed %u), %d training identities, %d probes, %d gallery images\n", eval.splits,
                 eval.seed, r.train_ids, r.probes, r.gallery);
     std::printf("CMC           rank-1 %.2f %%  rank-5 %.2f %%  rank-10 %.2f %%  rank-20 %.2f %%\n", 100 * r.rank1,
                 100 * r.rank5, 100 * r.rank10, 100 * r.rank20);
     std::printf("mAP           %.2f %%\n", 100 * r.map);
+    if (learn)
+      for (size_t s = 0; s < r.rank1_per_split.size(); ++s)
+        std::printf("split %-7zu rank-1 %.2f %%  mAP %.2f %%  %s\n", s, 100 * r.rank1_per_split[s],
+                    100 * r.map_per_split[s], r.matcher_per_split[s].c_str());
     std::printf("threshold     accepts %.1f %% of same-person pairs, rejects %.1f %% of different-person pairs\n",
                 100 * r.same_accepted, 100 * r.different_rejected);
     std::printf("ms per image  %.2f (features + descriptor + matching, training excluded)\n", r.ms_per_image);
     if (json) {
-      const nlohmann::json j = {{"rank1", r.rank1},   {"rank5", r.rank5},     {"rank10", r.rank10},
-                                {"rank20", r.rank20}, {"map", r.map},         {"probes", r.probes},
-                                {"gallery", r.gallery}, {"ms_per_image", r.ms_per_image},
-                                {"same_accepted", r.same_accepted}, {"different_rejected", r.different_rejected}};
+      const nlohmann::json j = {{"rank1", r.rank1},
+                                {"rank5", r.rank5},
+                                {"rank10", r.rank10},
+                                {"rank20", r.rank20},
+                                {"map", r.map},
+                                {"probes", r.probes},
+                                {"gallery", r.gallery},
+                                {"ms_per_image", r.ms_per_image},
+                                {"same_accepted", r.same_accepted},
+                                {"different_rejected", r.different_rejected},
+                                {"rank1_per_split", r.rank1_per_split},
+                                {"map_per_split", r.map_per_split}};
       std::printf("%s\n", json_text(j).c_str());
     }
   }
@@ -55,10 +77,12 @@ void add(CLI::App& eval) {
   auto command = std::make_shared<EvalReidCommand>();
   CLI::App* sub = eval.add_subcommand("reid", "Score person re-identification between two cameras (CMC, mAP)");
   sub->footer(
-      "Probes are the first camera's images of the test identities; the gallery is every second-camera image not "
-      "used for training (other identities are distractors). Matchers: default = LOMO + XQDA trained on each "
-      "split's training identities (with --train-ids 0 and no --model: the unlearned fallback, LOMO with "
-      "Euclidean distance); lomo = that fallback; kaze = the thesis's KAZE score.\n"
+      "Probes are the first camera's images of the test identities (the second's with --swap-cameras); the "
+      "gallery is every other-camera image not used for training (other identities are distractors). Without "
+      "--model a learning matcher is trained on each split's training identities only. Matchers: default = LOMO "
+      "and GOG variants with XQDA, the variant chosen by cross-validation inside each split's training "
+      "identities; lomo-xqda = the published LOMO + XQDA (Liao et al. 2015); lomo = LOMO with Euclidean "
+      "distance, nothing learned; kaze = the thesis's KAZE score.\n"
       "Example: bodyrec eval reid --root ../shared/datasets/viper --id-regex '^images/(\\d{4})' "
       "--cam-regex '^images/\\d{4}(\\d{4})' --train-ids 316 --json");
   add_reid_dataset_options(*sub, command->dataset);
@@ -68,9 +92,15 @@ void add(CLI::App& eval) {
   sub->add_option("--splits", command->eval.splits, "Random splits; figures are their means")->check(positive())
       ->capture_default_str();
   sub->add_option("--seed", command->eval.seed, "Seed of the splits")->capture_default_str();
-  sub->add_option("--matcher", command->matcher, "default | lomo-xqda | lomo | kaze")->capture_default_str();
+  sub->add_option("--matcher", command->matcher, "default | lomo-xqda | lomo | stripes | kaze")->capture_default_str();
   sub->add_option("--model", command->model,
-                  "XQDA model from `bodyrec train-reid` for the default matcher (used as is, not retrained)");
+                  "Model from `bodyrec train-reid` for default or lomo-xqda, used as is in every split (not "
+                  "retrained); with --train-ids 0 and no --model, default uses the shipped model");
+  sub->add_flag("--swap-cameras", command->eval.swap_cameras,
+                "Probes from the second camera, gallery from the first (the other direction)");
+  sub->add_option("--resize", command->resize,
+                  "Resample every image to WxH before anything else (e.g. 128x256): how sizes other than the "
+                  "data set's affect the matcher");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (rank1, rank5, rank10, rank20, map, probes, gallery, ms_per_image, "
                 "same_accepted, different_rejected: shares of the test's same-person pairs accepted and "

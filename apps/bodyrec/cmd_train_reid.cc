@@ -13,11 +13,12 @@ namespace {
 
 struct TrainReidCommand {
   ReidDatasetOptions dataset;
-  std::string out;
+  std::string out, matcher_name = "default";
 
   void run() const {
+    auto matcher = make_untrained_matcher(matcher_name);
+    if (!matcher->learns()) throw UsageError("matcher " + matcher_name + " learns nothing (use default or lomo-xqda)");
     const ReidDataset data = scan_reid_dataset(dataset.root, dataset.id_regex, dataset.cam_regex);
-    auto matcher = make_matcher("default");
     const std::vector<std::vector<float>> features = dataset_features(data, *matcher);
     std::vector<TrainingSample> samples;
     for (size_t i = 0; i < data.images.size(); ++i)
@@ -31,13 +32,16 @@ struct TrainReidCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<TrainReidCommand>();
   CLI::App* sub = app.add_subcommand(
-      "train-reid", "Learn the re-identification metric (LOMO + XQDA) from labelled images of two cameras");
+      "train-reid", "Learn the re-identification metric (LOMO/GOG + XQDA) from labelled images of two cameras");
   sub->footer(
       "Every image matching both regexes is used; same-person pairs are the two cameras' images of one "
-      "identity. Use the model with `bodyrec eval reid --model FILE`.\n"
-      "Example: bodyrec train-reid --root my_people --id-regex '^(\\w+)/' --cam-regex '/cam(\\d)_' --out reid.yml");
+      "identity. The default matcher first picks its variant by cross-validation over these people. Use the "
+      "model with `--model FILE` (reid, eval reid, gallery), or put a default model in models/ as "
+      "reid-default.yml.gz (or in $BODYREC_MODELS) to replace the shipped one.\n"
+      "Example: bodyrec train-reid --root my_people --id-regex '^(\\w+)/' --cam-regex '/cam(\\d)_' --out reid.yml.gz");
   add_reid_dataset_options(*sub, command->dataset);
-  sub->add_option("--out", command->out, "Model file to write (.yml or .yml.gz)")->required();
+  sub->add_option("--matcher", command->matcher_name, "default | lomo-xqda")->capture_default_str();
+  sub->add_option("--out", command->out, "Model file to write (.yml, or .yml.gz compressed)")->required();
   sub->callback([command] { command->run(); });
 }
 

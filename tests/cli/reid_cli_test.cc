@@ -98,6 +98,99 @@ TEST(TrainReidCli, WritesAModelThatEvalReidUses) {
   EXPECT_EQ(bad.exit_code, 3);
 }
 
+// --swap-cameras: probes from the second camera. The distractor p10 (second camera only) is no longer in
+// the gallery, and the first camera has no distractor: 6 probes against 6 gallery images.
+TEST(EvalReidCli, SwapCamerasTakesProbesFromTheSecondCamera) {
+  const RunResult r = run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "4", "--splits", "3", "--swap-cameras"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["probes"].get<int>(), 6);
+  EXPECT_EQ(j["gallery"].get<int>(), 6);
+  EXPECT_TRUE(contains(r.out, "cameras '2' -> '1'")) << r.out;
+  EXPECT_EQ(j["rank1_per_split"].size(), 3u);
+  EXPECT_EQ(j["map_per_split"].size(), 3u);
+}
+
+// --resize resamples every image first: to the size the images have, nothing changes; to another size
+// the figures are measured on the resampled images.
+TEST(EvalReidCli, ResizeResamplesEveryImageFirst) {
+  const std::vector<std::string> base = {"--matcher", "lomo", "--train-ids", "4", "--splits", "2"};
+  const RunResult plain = run_bodyrec(eval_args(base));
+  std::vector<std::string> same = base, bigger = base;
+  same.insert(same.end(), {"--resize", "48x128"});
+  bigger.insert(bigger.end(), {"--resize", "128x256"});
+  const RunResult as_is = run_bodyrec(eval_args(same)), resized = run_bodyrec(eval_args(bigger));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  ASSERT_EQ(as_is.exit_code, 0) << as_is.err;
+  ASSERT_EQ(resized.exit_code, 0) << resized.err;
+  // Ranks are perfect on this easy set either way; the distances (shares of pairs within the threshold)
+  // show whether the images changed.
+  auto rates = [](const RunResult& run) {
+    const auto j = last_json_line(run.out);
+    return std::vector<double>{j["same_accepted"].get<double>(), j["different_rejected"].get<double>()};
+  };
+  EXPECT_EQ(rates(as_is), rates(plain));
+  EXPECT_NE(rates(resized), rates(plain)) << resized.out;
+  EXPECT_EQ(last_json_line(resized.out)["probes"].get<int>(), 6);
+  EXPECT_TRUE(contains(resized.out, "resampled to 128x256")) << resized.out;
+  for (const char* bad : {"0x5", "48", "48x", "x128", "-48x128", "48x128x3", "4.5x10", "99999x5", "48 x128", "+48x128"}) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), {"--resize", bad});
+    const RunResult r = run_bodyrec(eval_args(args));
+    expect_one_line_error(r, 2, "--resize");
+  }
+}
+
+// The published recipe is its own matcher: trained by train-reid, used with --model; a model of one
+// matcher is refused by the other; matchers that learn need training people or a model.
+TEST(TrainReidCli, PublishedRecipeModelsAndWrongMatchers) {
+  TempDir dir;
+  const std::string model = (dir / "published.yml.gz").string();
+  const std::vector<std::string> data = {"--root", person_set().string(), "--id-regex", "/p(\\d+)\\.png$",
+                                         "--cam-regex", "^cam(\\d)/"};
+  std::vector<std::string> train = {"train-reid", "--matcher", "lomo-xqda", "--out", model};
+  train.insert(train.end(), data.begin(), data.end());
+  const RunResult t = run_bodyrec(train);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  const RunResult r = run_bodyrec(eval_args({"--matcher", "lomo-xqda", "--model", model, "--splits", "1", "--train-ids", "0"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(last_json_line(r.out)["rank1"].get<double>(), 1.0);
+  EXPECT_TRUE(contains(r.out, "as published")) << r.out;
+  expect_one_line_error(run_bodyrec(eval_args({"--matcher", "default", "--model", model})), 3, "lomo4");
+  std::vector<std::string> unlearned = {"train-reid", "--matcher", "lomo", "--out", (dir / "x.yml").string()};
+  unlearned.insert(unlearned.end(), data.begin(), data.end());
+  expect_one_line_error(run_bodyrec(unlearned), 2, "lomo");
+  expect_one_line_error(run_bodyrec(eval_args({"--matcher", "lomo-xqda", "--train-ids", "0"})), 2, "--model");
+}
+
+// The default matcher's model is found without a flag ($BODYREC_MODELS first, then the shipped models/).
+TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
+  TempDir dir;
+  const std::string model = (dir / "reid-default.yml.gz").string();
+  const RunResult t = run_bodyrec({"train-reid", "--root", person_set().string(), "--id-regex", "/p(\\d+)\\.png$",
+                                   "--cam-regex", "^cam(\\d)/", "--out", model});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_TRUE(contains(t.err, "chosen by 4-fold cross-validation")) << t.err;
+  const fs::path& rec = synth_recording({"--people", "2", "--seed", "3", "--frames", "60", "--scenario", "reenter"});
+  const RunResult r = run_bodyrec({"eval", "reid-stream", rec.string(), "--bodies-from", "skeleton", "--max-frames",
+                                   "40", "--matcher", "default", "--json"},
+                                  {"env", "BODYREC_MODELS=" + dir.path().string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(last_json_line(r.out)["matcher"], "default");
+  // eval reid with no training people: the default matcher uses that model as is, on every person.
+  const RunResult e = run_bodyrec(eval_args({"--train-ids", "0", "--splits", "1"}),
+                                  {"env", "BODYREC_MODELS=" + dir.path().string()});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_EQ(last_json_line(e.out)["probes"].get<int>(), 10);
+  EXPECT_DOUBLE_EQ(last_json_line(e.out)["rank1"].get<double>(), 1.0);
+  EXPECT_TRUE(contains(e.out, "matcher       variant ")) << e.out;
+  EXPECT_FALSE(contains(e.out, "split 0")) << e.out;
+  // The published recipe ships no model: online it needs --model.
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec.string(), "--bodies-from", "skeleton", "--max-frames",
+                                     "5", "--matcher", "lomo-xqda"}),
+                        2, "--model");
+}
+
 TEST(EvalReidCli, BadInputGivesOneLineErrorsAndExitCodes) {
   const std::string root = person_set().string();
   auto run = [&](const std::vector<std::string>& args) { return run_bodyrec(args); };
@@ -128,7 +221,7 @@ TEST(EvalReidCli, BadInputGivesOneLineErrorsAndExitCodes) {
   cv::imwrite((lonely / "cam2" / "p01.png").string(), person(1, 1));
   write_text(lonely / "cam1" / "p02.png", "not a png");
   r = run({"eval", "reid", "--root", lonely.path().string(), "--id-regex", "/p(\\d+)\\.png$", "--cam-regex",
-           "^cam(\\d)/", "--train-ids", "0"});
+           "^cam(\\d)/", "--train-ids", "0", "--matcher", "lomo"});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "p02.png: cannot read the image")) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

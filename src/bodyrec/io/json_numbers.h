@@ -2,7 +2,7 @@
 // 0.07856999999999999 (the shortest text that reads back to the same double); no measurement bodyrec
 // writes has 16 significant digits, so every JSON output (JSONL lines, --json summaries) rounds its
 // floating-point numbers to kJsonDigits significant digits first. Integers are untouched, and a number's
-// integer part is never rounded away (a time of 1733312345.25 s keeps its 10 digits).
+// integer part and three decimals are never rounded away (a Unix time of 1733312345.25 s stays whole).
 #pragma once
 
 #include <string>
@@ -13,8 +13,8 @@ namespace bodyrec {
 
 constexpr int kJsonDigits = 6;
 
-// `v` rounded to `digits` significant digits, or to its integer digits when it has more; NaN and
-// infinities as they are.
+// `v` rounded to `digits` significant digits, but never to fewer than its integer digits and three
+// decimals; NaN and infinities as they are.
 double round_significant(double v, int digits = kJsonDigits);
 
 // A copy of `value` with every floating-point number (at any depth) rounded by round_significant.

@@ -3,8 +3,9 @@
 #include <sstream>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/model_files.h"
 #include "bodyrec/reid/kaze_matcher.h"
-#include "bodyrec/reid/lomo_features.h"
+#include "bodyrec/reid/learned_matcher.h"
 #include "bodyrec/reid/stripe_features.h"
 
 namespace bodyrec {
@@ -29,77 +30,6 @@ class CopyIndex : public DescriptorIndex {
  private:
   const AppearanceMatcher& matcher_;
   std::vector<std::vector<float>> rows_;
-};
-
-// The feature format of the LOMO matchers: a model trained on other features is refused.
-// lomo2: LOMO of the colours as seen and after Retinex; lomo3: the same, each averaged with the mirror
-// image's feature.
-constexpr const char* kLomoFeatures = "lomo3";
-
-// Squared Euclidean distance between LOMO features (two halves, each with a unit-norm colour and texture
-// part) below which the unlearned fallback calls two images the same person: the balanced-error threshold
-// over all VIPeR cross-camera pairs (3.81 for the lomo2 features).
-constexpr double kLomoThreshold = 3.51;
-
-class LomoMatcher : public AppearanceMatcher {
- public:
-  // `source` names where the model came from, for errors.
-  LomoMatcher(XqdaEnsemble model, bool learns, const std::string& source = "")
-      : model_(std::move(model)), learns_(learns) {
-    if (model_.empty()) return;
-    if (model_.features != kLomoFeatures)
-      throw InputError(source + ": re-identification model trained on features '" + model_.features +
-                       "', this build computes '" + kLomoFeatures + "' (train it again with bodyrec train-reid)");
-    if (model_.input_length() != 2 * lomo_length())
-      throw InputError(source + ": re-identification model expects features of length " +
-                       std::to_string(model_.input_length()) + ", LOMO x 2 gives " + std::to_string(2 * lomo_length()));
-  }
-  std::string name() const override { return model_.empty() ? "lomo" : "lomo-xqda"; }
-  std::string version() const override {
-    return model_.empty() ? kLomoFeatures : std::string(kLomoFeatures) + "-xqda-" + model_.id;
-  }
-  std::string summary() const override {
-    std::ostringstream s;
-    if (model_.empty())
-      s << "LOMO features (mirror-averaged), unlearned: similarity = -squared Euclidean distance, same person above -"
-        << kLomoThreshold;
-    else
-      s << "LOMO features (mirror-averaged) + XQDA metric (plain and Retinex colour, fused; " << model_.embed_length()
-        << " dims, model " << model_.id << "): similarity = -squared distance, same person above " << threshold();
-    return s.str();
-  }
-  // LOMO on the colours as seen, then LOMO on Retinex colours, each averaged with the mirror image's
-  // (left-right invariant; on four VIPeR development splits rank-1 went from 39.9 to 41.8 %, training
-  // cost unchanged: docs/benchmarks.md): one XQDA model per half, fused.
-  std::vector<float> features(const PersonImage& image) const override {
-    LomoOptions plain, retinex;
-    plain.retinex = false;
-    plain.mirror = retinex.mirror = true;
-    std::vector<float> f = lomo_features(image, plain);
-    const std::vector<float> r = lomo_features(image, retinex);
-    f.insert(f.end(), r.begin(), r.end());
-    return f;
-  }
-  void train(const std::vector<TrainingSample>& samples) override {
-    if (!learns_) return;
-    model_ = train_xqda_ensemble(samples, 2);
-    model_.features = kLomoFeatures;
-  }
-  std::vector<float> descriptor(const std::vector<float>& f) const override {
-    return model_.empty() ? f : model_.embed(f);
-  }
-  double similarity(DescriptorView probe, DescriptorView gallery) const override {
-    return -squared_distance(probe, gallery);
-  }
-  double threshold() const override { return model_.empty() ? -kLomoThreshold : -model_.threshold; }
-  void save_model(const std::string& path) const override {
-    if (model_.empty()) AppearanceMatcher::save_model(path);
-    model_.save(path);
-  }
-
- private:
-  XqdaEnsemble model_;
-  bool learns_;  // false: the unlearned fallback stays unlearned
 };
 
 // Distance (the bands' squared Hellinger distances scaled to 8 bands, 0..8) below which the stripes
@@ -170,19 +100,43 @@ void AppearanceMatcher::save_model(const std::string& path) const {
 
 std::vector<std::string> matcher_names() { return {"default", "lomo-xqda", "lomo", "stripes", "kaze"}; }
 
-std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path) {
-  if (name == "kaze" || name == "lomo" || name == "stripes") {
-    if (!model_path.empty()) throw UsageError("matcher " + name + " takes no model");
-    if (name == "kaze") return std::make_unique<KazeMatcher>();
-    if (name == "stripes") return std::make_unique<StripeMatcher>();
-    return std::make_unique<LomoMatcher>(XqdaEnsemble{}, false);
-  }
-  if (name == "default" || name == "lomo-xqda")
-    return std::make_unique<LomoMatcher>(model_path.empty() ? XqdaEnsemble{} : XqdaEnsemble::load(model_path), true,
-                                         model_path);
+namespace {
+
+[[noreturn]] void unknown_matcher(const std::string& name) {
   std::string known;
   for (const auto& n : matcher_names()) known += (known.empty() ? "" : ", ") + n;
   throw UsageError("unknown matcher '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace
+
+std::unique_ptr<AppearanceMatcher> make_untrained_matcher(const std::string& name) {
+  if (name == "kaze") return std::make_unique<KazeMatcher>();
+  if (name == "stripes") return std::make_unique<StripeMatcher>();
+  if (name == "lomo") return make_learned_matcher(LearnedMatcherKind::kUnlearned);
+  if (name == "lomo-xqda") return make_learned_matcher(LearnedMatcherKind::kPublished);
+  if (name == "default") return make_learned_matcher(LearnedMatcherKind::kDefault);
+  unknown_matcher(name);
+}
+
+std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path) {
+  if (name == "kaze" || name == "lomo" || name == "stripes") {
+    if (!model_path.empty()) throw UsageError("matcher " + name + " takes no model");
+    return make_untrained_matcher(name);
+  }
+  if (name == "lomo-xqda") {
+    if (model_path.empty())
+      throw UsageError("matcher lomo-xqda needs --model (train one with bodyrec train-reid --matcher lomo-xqda)");
+    return make_learned_matcher(LearnedMatcherKind::kPublished, XqdaEnsemble::load(model_path), model_path);
+  }
+  if (name == "default") {
+    const std::string path =
+        !model_path.empty() ? model_path
+                            : require_model_file(kShippedReidModel,
+                                                 "it is trained by bodyrec train-reid (models/README.md has the command)");
+    return make_learned_matcher(LearnedMatcherKind::kDefault, XqdaEnsemble::load(path), path);
+  }
+  unknown_matcher(name);
 }
 
 }  // namespace bodyrec

@@ -35,12 +35,14 @@ class DescriptorIndex {
 class AppearanceMatcher {
  public:
   virtual ~AppearanceMatcher() = default;
-  virtual std::string name() const = 0;     // "lomo-xqda", "lomo", "kaze"
+  virtual std::string name() const = 0;     // "default", "lomo-xqda", "lomo", "stripes", "kaze"
   virtual std::string version() const = 0;  // descriptor format (and model fingerprint when learned)
   virtual std::string summary() const = 0;  // one line for reports: method, similarity, threshold
 
   // Model-independent features of one image (what train() learns from).
   virtual std::vector<float> features(const PersonImage& image) const = 0;
+  // Whether train() learns anything (and descriptor() needs a model).
+  virtual bool learns() const { return false; }
   // Learns from labelled features (two cameras). Matchers that learn nothing ignore it.
   virtual void train(const std::vector<TrainingSample>& samples) { (void)samples; }
   // The descriptor to store: features with the learned model, if any, applied.
@@ -59,19 +61,25 @@ class AppearanceMatcher {
   virtual void save_model(const std::string& path) const;
 };
 
-// The matchers by name:
-//  "default" / "lomo-xqda": LOMO features twice (colours as seen, and after Retinex), each averaged
-//      with the mirror image's (LomoOptions::mirror; descriptor version "lomo3"); with a model
-//      (model_path, or train()) one XQDA metric per half, fused (xqda.h XqdaEnsemble),
+// The matchers by name (learned_matcher.h has the LOMO-based ones):
+//  "default": LOMO and GOG features with XQDA; train() picks one of a few fixed variants (plain LOMO,
+//      mirror-averaged LOMO of two colour versions fused, GOG, both fused) by cross-validation over the
+//      training people only. Its model: model_path, else the shipped one (models/, kShippedReidModel,
+//      found by find_model_file; InputError saying how to get one when there is none).
 //      similarity = -squared distance of the embeddings, threshold calibrated on held-out training
-//      people (train_xqda_ensemble); without a model it is the unlearned fallback "lomo".
-//  "lomo": the same features, similarity = -squared Euclidean distance, threshold measured on VIPeR.
+//      people (train_xqda_ensemble).
+//  "lomo-xqda": the published LOMO + XQDA (Liao et al. 2015); needs model_path (else UsageError).
+//  "lomo": mirror-averaged LOMO, similarity = -squared Euclidean distance, threshold measured on VIPeR.
 //  "stripes": compact colour histograms in horizontal stripes (stripe_features.h), no model; the online
 //      default of `bodyrec reid` (4 KB per scan), threshold set on synthetic recordings.
 //  "kaze": the thesis's KAZE score (kaze_matcher.h), threshold 10.
-// Throws UsageError for an unknown name, InputError for an unreadable model or one trained on other
-// features (an XQDA model records them, e.g. "lomo3").
+// Throws UsageError for an unknown name or a model given to a matcher that takes none, InputError for an
+// unreadable model or one trained on other features (an XQDA model records them, e.g. "lomo4-gog1").
 std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");
+
+// The same matcher without a model, to be trained (eval reid's splits, train-reid): "default" and
+// "lomo-xqda" then need train() before descriptor(); the others are as make_matcher makes them.
+std::unique_ptr<AppearanceMatcher> make_untrained_matcher(const std::string& name);
 
 // The names make_matcher accepts, for --help and errors.
 std::vector<std::string> matcher_names();

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/reid/learned_matcher.h"
 #include "bodyrec/reid/lomo_features.h"
 #include "test_support.h"
 
@@ -35,71 +37,116 @@ double max_difference(const std::vector<float>& a, const std::vector<float>& b) 
   return worst;
 }
 
-TEST(LomoMatcher, FeaturesAreTheSameForAnImageAndItsMirror) {
+TEST(LomoMatcher, UnlearnedFeaturesAreTheSameForAnImageAndItsMirror) {
   const auto matcher = make_matcher("lomo");
-  EXPECT_EQ(matcher->version(), "lomo3");  // lomo2 features were not mirror-averaged
+  EXPECT_EQ(matcher->version(), "lomo4m");  // lomo3 had two colour halves, two parts each
+  EXPECT_FALSE(matcher->learns());
   const cv::Mat image = person(1, 0);
   cv::Mat mirrored;
   cv::flip(image, mirrored, 1);
   const auto f = matcher->features({image, {}});
-  ASSERT_EQ(f.size(), size_t(2 * lomo_length()));
+  ASSERT_EQ(f.size(), size_t(lomo_length()));
   EXPECT_LT(max_difference(f, matcher->features({mirrored, {}})), 1e-6);
-  // ...and not the single-image LOMO (plain colours half).
-  LomoOptions plain;
-  plain.retinex = false;
-  const auto single = lomo_features({image, {}}, plain);
-  EXPECT_GT(max_difference(std::vector<float>(f.begin(), f.begin() + lomo_length()), single), 0.01);  // 0.018
+  // ...and not the published LOMO of the image alone.
+  EXPECT_GT(max_difference(f, lomo_features({image, {}})), 0.01);
+  EXPECT_EQ(matcher->descriptor(f), f);
 }
 
-// A hand-made model of LOMO x 2 input length, tagged with `features`.
-XqdaEnsemble model_of(const std::string& features) {
+// Features and labels of `people` generated identities in two cameras, as `matcher` computes them.
+struct People {
+  std::vector<std::vector<float>> features;
+  std::vector<TrainingSample> samples;
+};
+People people_for(const AppearanceMatcher& matcher, int people) {
+  People p;
+  for (int id = 0; id < people; ++id)
+    for (int cam = 0; cam < 2; ++cam) p.features.push_back(matcher.features({person(id, cam), {}}));
+  for (size_t i = 0; i < p.features.size(); ++i)
+    p.samples.push_back({&p.features[i], static_cast<int>(i / 2), static_cast<int>(i % 2)});
+  return p;
+}
+
+TEST(LomoMatcher, PublishedRecipeTrainsSavesAndLoads) {
+  auto matcher = make_untrained_matcher("lomo-xqda");
+  EXPECT_TRUE(matcher->learns());
+  const People p = people_for(*matcher, 6);
+  ASSERT_EQ(p.features[0], lomo_features({person(0, 0), {}}));  // the published LOMO, nothing more
+  EXPECT_THROW(matcher->descriptor(p.features[0]), ProcessingError);  // not trained yet
+  matcher->train(p.samples);
+  testing::TempDir dir;
+  const std::string path = (dir / "published.yml").string();
+  matcher->save_model(path);
+  const XqdaEnsemble saved = XqdaEnsemble::load(path);
+  EXPECT_EQ(saved.features, "lomo4");
+  EXPECT_EQ(saved.parts.size(), 1u);
+  const auto back = make_matcher("lomo-xqda", path);
+  EXPECT_EQ(back->version(), matcher->version());
+  EXPECT_EQ(back->describe({person(3, 1), {}}), matcher->descriptor(p.features[7]));
+  // Online use needs a model: there is none shipped for the published recipe.
+  EXPECT_THROW(make_matcher("lomo-xqda"), UsageError);
+  // A published model is not a default model, nor the other way round.
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'lomo4'"));
+}
+
+// A hand-made default model of the given format and variant with one part of `inputs` values.
+XqdaEnsemble model_of(const std::string& features, const std::string& variant, int inputs) {
   XqdaEnsemble e;
-  cv::RNG rng(5);
-  for (int k = 0; k < 2; ++k) {
-    XqdaModel m;
-    m.projection = cv::Mat(lomo_length(), 3, CV_32F);
-    rng.fill(m.projection, cv::RNG::NORMAL, 0, 0.01);
-    m.threshold = 1.0;
-    m.prepare();
-    e.parts.push_back(m);
-  }
+  XqdaModel m;
+  m.projection = cv::Mat(inputs, 3, CV_32F, cv::Scalar(0.01f));
+  m.threshold = 1.0;
+  m.prepare();
+  e.parts.push_back(m);
   e.threshold = 2.0;
   e.id = "deadbeef";
   e.features = features;
+  e.variant = variant;
   return e;
 }
 
-TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesAreRefused) {
+TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesOrVariantsAreRefused) {
   testing::TempDir dir;
   const std::string old_path = (dir / "old.yml").string(), path = (dir / "reid.yml").string();
-  model_of("lomo2").save(old_path);
+  model_of("lomo3", "lomo", lomo_length()).save(old_path);
   const std::string error = testing::input_error([&] { make_matcher("default", old_path); });
   EXPECT_TRUE(testing::contains(error, "old.yml")) << error;
-  EXPECT_TRUE(testing::contains(error, "'lomo2'")) << error;
+  EXPECT_TRUE(testing::contains(error, "'lomo3'")) << error;
   EXPECT_TRUE(testing::contains(error, "train-reid")) << error;
-  model_of("lomo3").save(path);
+  model_of("lomo4-gog1", "sift", lomo_length()).save(path);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'variant' 'sift'"));
+  model_of("lomo4-gog1", "lomo", 100).save(path);  // variant lomo reads 26960 values
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "26960"));
+  model_of("lomo4-gog1", "lomo", lomo_length()).save(path);
   const auto matcher = make_matcher("default", path);
-  EXPECT_EQ(matcher->version(), "lomo3-xqda-deadbeef");
-  EXPECT_EQ(matcher->describe({person(2, 1), {}}).size(), 6u);
+  EXPECT_EQ(matcher->version(), "lomo4-gog1-xqda-deadbeef");
+  EXPECT_EQ(matcher->describe({person(2, 1), {}}).size(), 3u);
   EXPECT_DOUBLE_EQ(matcher->threshold(), -2.0);
 }
 
-TEST(LomoMatcher, TrainedModelSavesItsFeatureFormat) {
-  std::vector<std::vector<float>> features;
-  std::vector<TrainingSample> samples;
-  auto matcher = make_matcher("default");
-  for (int id = 0; id < 6; ++id)
-    for (int cam = 0; cam < 2; ++cam) features.push_back(matcher->features({person(id, cam), {}}));
-  for (size_t i = 0; i < features.size(); ++i)
-    samples.push_back({&features[i], static_cast<int>(i / 2), static_cast<int>(i % 2)});
-  matcher->train(samples);
+// The default matcher picks its variant on the training people, saves it, and the saved model is found
+// without a flag as the shipped model (BODYREC_MODELS first).
+TEST(LomoMatcher, DefaultChoosesAVariantAndIsFoundWithoutAFlag) {
+  auto matcher = make_untrained_matcher("default");
+  const People p = people_for(*matcher, 8);
+  matcher->train(p.samples);
+  EXPECT_TRUE(testing::contains(matcher->summary(), "chosen by 4-fold cross-validation")) << matcher->summary();
   testing::TempDir dir;
-  const std::string path = (dir / "reid.yml").string();
+  const std::string path = (dir / kShippedReidModel).string();
   matcher->save_model(path);
-  EXPECT_EQ(XqdaEnsemble::load(path).features, "lomo3");
-  const auto back = make_matcher("default", path);
-  EXPECT_EQ(back->version(), matcher->version());
-  EXPECT_EQ(back->describe({person(3, 1), {}}), matcher->descriptor(features[7]));
+  const XqdaEnsemble saved = XqdaEnsemble::load(path);
+  EXPECT_EQ(saved.features, "lomo4-gog1");
+  bool known = false;
+  for (const auto& v : default_reid_variants()) known |= v.name == saved.variant;
+  EXPECT_TRUE(known) << saved.variant;
+  setenv("BODYREC_MODELS", dir.path().c_str(), 1);
+  const auto shipped = make_matcher("default");
+  unsetenv("BODYREC_MODELS");
+  EXPECT_EQ(shipped->version(), matcher->version());
+  EXPECT_EQ(shipped->describe({person(5, 1), {}}), matcher->descriptor(p.features[11]));
+  // Few people: with 3 in both cameras there are no two-person folds, the published variant is trained.
+  auto few = make_untrained_matcher("default");
+  const People q = people_for(*few, 3);
+  few->train(q.samples);
+  EXPECT_TRUE(testing::contains(few->summary(), "variant lomo ")) << few->summary();
 }
 
 }  // namespace

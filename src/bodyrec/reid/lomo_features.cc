@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/reid/resample.h"
 #include "bodyrec/reid/retinex.h"
 
 namespace bodyrec {
@@ -24,20 +25,63 @@ int total_patch_rows(const LomoOptions& o) {
   return rows;
 }
 
-// Joint HSV (or Lab) bin index per pixel (CV_16U).
-cv::Mat colour_codes(const cv::Mat& bgr, int bins, bool lab) {
-  cv::Mat hsv;
-  cv::cvtColor(bgr, hsv, lab ? cv::COLOR_BGR2Lab : cv::COLOR_BGR2HSV);  // H 0..179, the rest 0..255
-  const int hue_range = lab ? 256 : 180;
-  cv::Mat codes(bgr.size(), CV_16U);
+// Quantised H, S, V per pixel (CV_8UC3, each 0..bins-1) as LOMO.m: floor(x * bins) with H, S, V in [0, 1]
+// (MATLAB's rgb2hsv), the top value falling into the last bin.
+cv::Mat quantised_hsv(const cv::Mat& bgr, int bins) {
+  cv::Mat f, hsv;
+  bgr.convertTo(f, CV_32FC3, 1.0 / 255.0);
+  cv::cvtColor(f, hsv, cv::COLOR_BGR2HSV);  // H in degrees [0, 360), S and V in [0, 1]
+  cv::Mat q(bgr.size(), CV_8UC3);
   for (int y = 0; y < hsv.rows; ++y) {
-    const cv::Vec3b* p = hsv.ptr<cv::Vec3b>(y);
-    auto* c = codes.ptr<uint16_t>(y);
+    const cv::Vec3f* p = hsv.ptr<cv::Vec3f>(y);
+    cv::Vec3b* o = q.ptr<cv::Vec3b>(y);
     for (int x = 0; x < hsv.cols; ++x) {
-      const int h = std::min(p[x][0] * bins / hue_range, bins - 1);
-      const int s = p[x][1] * bins / 256, v = p[x][2] * bins / 256;
-      c[x] = static_cast<uint16_t>((h * bins + s) * bins + v);
+      const float unit[3] = {p[x][0] / 360.0f, p[x][1], p[x][2]};
+      for (int c = 0; c < 3; ++c)
+        o[x][c] = static_cast<uchar>(std::clamp(static_cast<int>(std::floor(unit[c] * bins)), 0, bins - 1));
     }
+  }
+  return q;
+}
+
+// Next pyramid level of quantised channels: the floored mean over each 2x2 block of its body pixels
+// (of all four when none is body); an odd last row or column is dropped (LOMO.m's ColorPooling).
+cv::Mat pool_quantised(const cv::Mat& q, const cv::Mat& body) {
+  cv::Mat out(q.rows / 2, q.cols / 2, CV_8UC3);
+  for (int y = 0; y < out.rows; ++y)
+    for (int x = 0; x < out.cols; ++x) {
+      int sum[3] = {0, 0, 0}, all[3] = {0, 0, 0}, n = 0;
+      for (int dy = 0; dy < 2; ++dy)
+        for (int dx = 0; dx < 2; ++dx) {
+          const cv::Vec3b v = q.at<cv::Vec3b>(2 * y + dy, 2 * x + dx);
+          const bool in = body.at<uchar>(2 * y + dy, 2 * x + dx) != 0;
+          n += in;
+          for (int c = 0; c < 3; ++c) all[c] += v[c], sum[c] += in ? v[c] : 0;
+        }
+      for (int c = 0; c < 3; ++c) out.at<cv::Vec3b>(y, x)[c] = static_cast<uchar>(n ? sum[c] / n : all[c] / 4);
+    }
+  return out;
+}
+
+// Mean over each 2x2 block of a CV_32F image, odd last row or column dropped.
+cv::Mat pool_mean(const cv::Mat& m) {
+  cv::Mat out(m.rows / 2, m.cols / 2, CV_32F);
+  for (int y = 0; y < out.rows; ++y) {
+    const float* a = m.ptr<float>(2 * y);
+    const float* b = m.ptr<float>(2 * y + 1);
+    float* o = out.ptr<float>(y);
+    for (int x = 0; x < out.cols; ++x) o[x] = 0.25f * (a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1]);
+  }
+  return out;
+}
+
+// Joint bin index per pixel (CV_16U).
+cv::Mat joint_codes(const cv::Mat& q, int bins) {
+  cv::Mat codes(q.size(), CV_16U);
+  for (int y = 0; y < q.rows; ++y) {
+    const cv::Vec3b* p = q.ptr<cv::Vec3b>(y);
+    auto* c = codes.ptr<uint16_t>(y);
+    for (int x = 0; x < q.cols; ++x) c[x] = static_cast<uint16_t>((p[x][2] * bins + p[x][1]) * bins + p[x][0]);
   }
   return codes;
 }
@@ -83,9 +127,9 @@ struct PatchGrid {
   const uint16_t* remap = nullptr;
 };
 
-// For each patch row: histogram of each patch (masked pixels only), element-wise max over the row.
+// For each patch row: histogram of each patch (body pixels only), element-wise max over the row.
 // Appends patch_rows x bins counts to `out`.
-void max_pooled_histograms(const cv::Mat& codes, const cv::Mat& mask, int bins, const LomoOptions& o,
+void max_pooled_histograms(const cv::Mat& codes, const cv::Mat& body, int bins, const LomoOptions& o,
                            PatchGrid grid, std::vector<float>& out) {
   const int rows = patch_rows(codes.rows, o);
   const int cols = codes.cols < o.patch ? 0 : (codes.cols - o.patch) / o.stride + 1;
@@ -96,12 +140,12 @@ void max_pooled_histograms(const cv::Mat& codes, const cv::Mat& mask, int bins, 
   touched.reserve(static_cast<size_t>(o.patch * o.patch));
   for (int r = 0; r < rows; ++r) {
     const size_t base = out.size();
-    out.resize(base + bins, 0.0f);
+    out.resize(base + static_cast<size_t>(bins), 0.0f);
     for (int c = 0; c < cols; ++c) {
       const int x0 = grid.mirrored ? codes.cols - o.patch - c * o.stride : c * o.stride;
       for (int y = r * o.stride; y < r * o.stride + o.patch; ++y) {
         const auto* code = codes.ptr<uint16_t>(y);
-        const uchar* m = mask.ptr<uchar>(y);
+        const uchar* m = body.ptr<uchar>(y);
         for (int x = x0; x < x0 + o.patch; ++x) {
           if (!m[x]) continue;
           const int b = grid.remap ? grid.remap[code[x]] : code[x];
@@ -118,22 +162,32 @@ void max_pooled_histograms(const cv::Mat& codes, const cv::Mat& mask, int bins, 
   }
 }
 
-void unit_normalise(float* begin, float* end) {
+void unit_normalise(std::vector<float>& v) {
   double norm = 0;
-  for (float* p = begin; p != end; ++p) norm += double(*p) * *p;
+  for (float x : v) norm += double(x) * x;
   if (norm <= 0) return;
   const float inv = static_cast<float>(1.0 / std::sqrt(norm));
-  for (float* p = begin; p != end; ++p) *p *= inv;
+  for (float& x : v) x *= inv;
 }
 
-// [colour | texture R=3 | texture R=5] counts -> log(1 + x), colour part and texture part each of unit norm.
-// The counts are whole numbers up to the pixels of a patch: log(1 + x) comes from a table.
-void log_normalise(std::vector<float>& feature, size_t colour_length, int max_count) {
+// Whole-number counts -> log(1 + x) (from a table: counts are at most the pixels of a patch), unit norm.
+void log_normalise(std::vector<float>& v, int max_count) {
   std::vector<float> log1p_of(static_cast<size_t>(max_count) + 1);
   for (size_t k = 0; k < log1p_of.size(); ++k) log1p_of[k] = std::log1p(static_cast<float>(k));
-  for (float& x : feature) x = log1p_of[static_cast<size_t>(x)];
-  unit_normalise(feature.data(), feature.data() + colour_length);
-  unit_normalise(feature.data() + colour_length, feature.data() + feature.size());
+  for (float& x : v) x = log1p_of[static_cast<size_t>(x)];
+  unit_normalise(v);
+}
+
+// views[0]: the image's counts; views[1] (with mirror): the mirror image's. Returns the finished part;
+// `own` (if given) receives the image's own finished part.
+std::vector<float> finish(std::vector<float> (&views)[2], bool mirror, int max_count, std::vector<float>* own) {
+  log_normalise(views[0], max_count);
+  if (own) *own = views[0];
+  if (!mirror) return std::move(views[0]);
+  log_normalise(views[1], max_count);
+  for (size_t i = 0; i < views[0].size(); ++i) views[0][i] = 0.5f * (views[0][i] + views[1][i]);
+  unit_normalise(views[0]);
+  return std::move(views[0]);
 }
 
 }  // namespace
@@ -146,65 +200,70 @@ void LomoOptions::check() const {
   if (siltp_tau <= 0 || siltp_tau >= 1) throw UsageError("LOMO: siltp_tau must be in (0, 1)");
 }
 
-int lomo_length(const LomoOptions& o) {
-  return total_patch_rows(o) * (o.hsv_bins * o.hsv_bins * o.hsv_bins + 2 * kSiltpBins);
-}
+int lomo_colour_length(const LomoOptions& o) { return total_patch_rows(o) * o.hsv_bins * o.hsv_bins * o.hsv_bins; }
+int lomo_texture_length(const LomoOptions& o) { return total_patch_rows(o) * kSiltpBins; }
+int lomo_length(const LomoOptions& o) { return lomo_colour_length(o) + 2 * lomo_texture_length(o); }
 
-std::vector<float> lomo_features(const PersonImage& image, const LomoOptions& o) {
+LomoParts lomo_parts(const PersonImage& image, const LomoOptions& o, bool colours_as_seen, bool colours_retinex,
+                     bool mirror, LomoParts* unmirrored) {
   CV_Assert(!image.bgr.empty() && image.bgr.type() == CV_8UC3);
   CV_Assert(image.mask.empty() || (image.mask.type() == CV_8U && image.mask.size() == image.bgr.size()));
   const cv::Size size(o.width, o.height);
-  cv::Mat bgr, mask;
-  cv::resize(image.bgr, bgr, size, 0, 0, cv::INTER_AREA);
-  if (image.mask.empty()) {
-    mask = cv::Mat(size, CV_8U, cv::Scalar(255));
-  } else {
-    cv::resize(image.mask, mask, size, 0, 0, cv::INTER_NEAREST);
-  }
-  cv::Mat colour = o.retinex ? multiscale_retinex(bgr, mask) : bgr;
+  const cv::Mat bgr = resample_image(image.bgr, size);
+  const cv::Mat mask = image.mask.empty() ? cv::Mat(size, CV_8U, cv::Scalar(255)) : resample_mask(image.mask, size);
   cv::Mat gray;
   cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
   gray.convertTo(gray, CV_32F);
   cv::Mat mask_f;
   mask.convertTo(mask_f, CV_32F, 1.0 / 255.0);  // fraction of body pixels, pooled with the image
+  const bool wanted[2] = {colours_as_seen, colours_retinex};
+  cv::Mat quantised[2];
+  for (int k = 0; k < 2; ++k)
+    if (wanted[k]) quantised[k] = quantised_hsv(k == 0 ? bgr : multiscale_retinex(bgr, mask), o.hsv_bins);
 
   const int colour_bins = o.hsv_bins * o.hsv_bins * o.hsv_bins;
   static const std::vector<uint16_t> siltp_mirror = mirrored_siltp_codes();
-  // Histograms of the image ([0]) and, with o.mirror, of its mirror image ([1]) from the same codes.
-  const int views = o.mirror ? 2 : 1;
-  std::vector<float> hsv[2], texture[2][2];
+  const int views = mirror ? 2 : 1;
+  std::vector<float> colour[2][2], texture[2][2];  // [colour variant or radius][view]
+  cv::Mat body = mask_f >= 0.5f;
   for (int s = 0; s < o.scales; ++s) {
-    if (s > 0) {  // 2x2 average pooling
-      const cv::Size half(colour.cols / 2, colour.rows / 2);
-      cv::resize(colour, colour, half, 0, 0, cv::INTER_AREA);
-      cv::resize(gray, gray, half, 0, 0, cv::INTER_AREA);
-      cv::resize(mask_f, mask_f, half, 0, 0, cv::INTER_AREA);
+    if (s > 0) {
+      for (auto& q : quantised)
+        if (!q.empty()) q = pool_quantised(q, body);
+      gray = pool_mean(gray);
+      mask_f = pool_mean(mask_f);
+      body = mask_f >= 0.5f;
     }
-    cv::Mat body = mask_f >= 0.5f;
-    const cv::Mat colour_code = colour_codes(colour, o.hsv_bins, o.lab);
-    cv::Mat siltp[2];
-    for (int k = 0; k < 2; ++k) siltp[k] = siltp_codes(gray, kSiltpRadii[k], o.siltp_tau);
+    cv::Mat siltp[2], codes[2];
+    for (int k = 0; k < 2; ++k) {
+      siltp[k] = siltp_codes(gray, kSiltpRadii[k], o.siltp_tau);
+      if (wanted[k]) codes[k] = joint_codes(quantised[k], o.hsv_bins);
+    }
     for (int v = 0; v < views; ++v) {
-      max_pooled_histograms(colour_code, body, colour_bins, o, {v == 1, nullptr}, hsv[v]);
+      for (int k = 0; k < 2; ++k)
+        if (wanted[k]) max_pooled_histograms(codes[k], body, colour_bins, o, {v == 1, nullptr}, colour[k][v]);
       for (int k = 0; k < 2; ++k)
         max_pooled_histograms(siltp[k], body, kSiltpBins, o, {v == 1, v == 1 ? siltp_mirror.data() : nullptr},
-                              texture[v][k]);
+                              texture[k][v]);
     }
   }
-  std::vector<float> feature[2];
-  for (int v = 0; v < views; ++v) {
-    feature[v].reserve(static_cast<size_t>(lomo_length(o)));
-    feature[v].insert(feature[v].end(), hsv[v].begin(), hsv[v].end());
-    feature[v].insert(feature[v].end(), texture[v][0].begin(), texture[v][0].end());
-    feature[v].insert(feature[v].end(), texture[v][1].begin(), texture[v][1].end());
-    log_normalise(feature[v], hsv[v].size(), o.patch * o.patch);
+  LomoParts parts;
+  const int max_count = o.patch * o.patch;
+  const bool both = mirror && unmirrored;
+  for (int k = 0; k < 2; ++k) {
+    if (wanted[k]) parts.colour[k] = finish(colour[k], mirror, max_count, both ? &unmirrored->colour[k] : nullptr);
+    parts.siltp[k] = finish(texture[k], mirror, max_count, both ? &unmirrored->siltp[k] : nullptr);
   }
-  if (o.mirror) {
-    for (size_t i = 0; i < feature[0].size(); ++i) feature[0][i] = 0.5f * (feature[0][i] + feature[1][i]);
-    unit_normalise(feature[0].data(), feature[0].data() + hsv[0].size());
-    unit_normalise(feature[0].data() + hsv[0].size(), feature[0].data() + feature[0].size());
-  }
-  return feature[0];
+  return parts;
+}
+
+std::vector<float> lomo_features(const PersonImage& image, const LomoOptions& o) {
+  LomoParts p = lomo_parts(image, o, !o.retinex, o.retinex, o.mirror);
+  std::vector<float> f = std::move(p.colour[o.retinex ? 1 : 0]);
+  f.reserve(static_cast<size_t>(lomo_length(o)));
+  f.insert(f.end(), p.siltp[0].begin(), p.siltp[0].end());
+  f.insert(f.end(), p.siltp[1].begin(), p.siltp[1].end());
+  return f;
 }
 
 }  // namespace bodyrec

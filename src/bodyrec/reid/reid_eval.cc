@@ -2,11 +2,15 @@
 
 #include <chrono>
 #include <filesystem>
+#include <string_view>
+#include <utility>
 
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/parse_number.h"
 #include "bodyrec/reid/cmc.h"
+#include "bodyrec/reid/resample.h"
 
 namespace bodyrec {
 namespace {
@@ -16,8 +20,27 @@ double ms_since(Clock::time_point t) { return std::chrono::duration<double, std:
 
 }  // namespace
 
+cv::Size parse_image_size(const std::string& text, const std::string& option) {
+  const auto x = text.find('x');
+  const auto side = [&](std::string_view part) {
+    const auto v = parse_integer(part);
+    return v && *v >= 1 && *v <= 8192 && part.find_first_of(" \t+") == std::string_view::npos ? static_cast<int>(*v) : 0;
+  };
+  const int w = x == std::string::npos ? 0 : side(std::string_view(text).substr(0, x));
+  const int h = x == std::string::npos ? 0 : side(std::string_view(text).substr(x + 1));
+  if (w == 0 || h == 0)
+    throw UsageError(option + " must be WxH with whole numbers in 1..8192, e.g. 128x256 (got '" + text + "')");
+  return {w, h};
+}
+
+ReidDataset with_cameras_swapped(ReidDataset data) {
+  std::swap(data.cameras[0], data.cameras[1]);
+  for (auto& image : data.images) image.camera = 1 - image.camera;
+  return data;
+}
+
 std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const AppearanceMatcher& matcher,
-                                                 double* ms) {
+                                                 double* ms, cv::Size resize) {
   std::vector<std::vector<float>> features(data.images.size());
   double total_ms = 0;
   for (size_t i = 0; i < data.images.size(); ++i) {
@@ -25,6 +48,7 @@ std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const 
     PersonImage image;
     image.bgr = cv::imread(path, cv::IMREAD_COLOR);
     if (image.bgr.empty()) throw InputError(path + ": cannot read the image");
+    if (!resize.empty()) image.bgr = resample_image(image.bgr, resize);
     const auto t = Clock::now();
     features[i] = matcher.features(image);
     total_ms += ms_since(t);
@@ -36,15 +60,18 @@ std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const 
 void ReidEvalOptions::check() const {
   if (splits < 1) throw UsageError("--splits must be >= 1");
   if (train_ids < -1) throw UsageError("--train-ids must be >= 0");
+  if (resize.width < 0 || resize.height < 0 || (resize.width == 0) != (resize.height == 0))
+    throw UsageError("--resize must have a positive width and height");
 }
 
-ReidEvalResult evaluate_reid(const ReidDataset& data, const MatcherFactory& make, const ReidEvalOptions& options) {
+ReidEvalResult evaluate_reid(const ReidDataset& given, const MatcherFactory& make, const ReidEvalOptions& options) {
   options.check();
+  const ReidDataset data = options.swap_cameras ? with_cameras_swapped(given) : given;
   ReidEvalResult result;
   result.train_ids = options.train_ids >= 0 ? options.train_ids : static_cast<int>(data.in_both.size()) / 2;
   // Features do not depend on the split: compute them once per image.
   double feature_ms_per_image = 0;
-  const std::vector<std::vector<float>> features = dataset_features(data, *make(), &feature_ms_per_image);
+  const std::vector<std::vector<float>> features = dataset_features(data, *make(), &feature_ms_per_image, options.resize);
   double match_ms_per_image = 0;
   for (int s = 0; s < options.splits; ++s) {
     const ReidSplit split = make_reid_split(data, result.train_ids, options.seed, s);
@@ -81,9 +108,11 @@ ReidEvalResult evaluate_reid(const ReidDataset& data, const MatcherFactory& make
     result.rank20 += scores.cmc[19];
     result.map += scores.map;
     result.rank1_per_split.push_back(scores.cmc[0]);
+    result.map_per_split.push_back(scores.map);
     result.probes = static_cast<int>(split.probes.size());
     result.gallery = static_cast<int>(split.gallery.size());
     result.matcher = matcher->summary();
+    result.matcher_per_split.push_back(result.matcher);
   }
   const double n = options.splits;
   result.rank1 /= n, result.rank5 /= n, result.rank10 /= n, result.rank20 /= n, result.map /= n;

@@ -115,6 +115,39 @@ TEST(Xqda, ThresholdHoldsForUnseenPeopleWhenTrainingIsRankDeficient) {
   EXPECT_GE(diff_ok, diff_total * 6 / 10);  // ...and most different-person pairs rejected
 }
 
+// The kernel form (Gram matrix in, coefficients on inner products out) is the same model as the
+// feature-space one.
+TEST(Xqda, KernelFormGivesTheSameEmbedding) {
+  const Synthetic training = make_data(30, 7), test = make_data(5, 8);
+  const XqdaModel model = train(training);
+  cv::Mat a(static_cast<int>(training.features.size()), 50, CV_32F);
+  std::vector<XqdaLabel> labels;
+  for (size_t i = 0; i < training.features.size(); ++i) {
+    std::copy(training.features[i].begin(), training.features[i].end(), a.ptr<float>(static_cast<int>(i)));
+    labels.push_back({training.ids[i], training.cams[i]});
+  }
+  const XqdaFit fit = fit_xqda(gram_matrix(a), labels);
+  ASSERT_EQ(fit.coefficients.cols, model.projection.cols);
+  EXPECT_DOUBLE_EQ(fit.threshold, model.threshold);
+  for (const auto& f : test.features) {
+    cv::Mat x(50, 1, CV_32F, const_cast<float*>(f.data())), k;
+    cv::Mat(a * x).convertTo(k, CV_64F);
+    const cv::Mat e = fit.coefficients.t() * k;
+    const std::vector<float> direct = model.embed(f);
+    for (int j = 0; j < e.rows; ++j) EXPECT_NEAR(e.at<double>(j), direct[static_cast<size_t>(j)], 1e-3 * (1 + std::abs(direct[static_cast<size_t>(j)])));
+  }
+}
+
+TEST(Xqda, EnsembleSlicesMayDifferInLength) {
+  const Synthetic s = make_data(20, 9);
+  const XqdaEnsemble model = train_xqda_ensemble(samples_of(s), std::vector<int>{20, 30});
+  ASSERT_EQ(model.parts.size(), 2u);
+  EXPECT_EQ(model.parts[0].input_length(), 20);
+  EXPECT_EQ(model.parts[1].input_length(), 30);
+  EXPECT_THROW(train_xqda_ensemble(samples_of(s), std::vector<int>{20, 20}), ProcessingError);
+  EXPECT_THROW(train_xqda_ensemble(samples_of(s), 3), ProcessingError);  // 50 is not 3 equal slices
+}
+
 TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   const Synthetic s = make_data(20, 3);
   std::vector<XqdaSample> samples;
@@ -122,15 +155,25 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   XqdaEnsemble model = train_xqda_ensemble(samples, 2);  // two 25-float slices
   ASSERT_EQ(model.parts.size(), 2u);
   EXPECT_EQ(model.input_length(), 50);
+  // Projections hold float16 values (what the file stores): converting again changes nothing.
+  cv::Mat half, back_to_float;
+  model.parts[0].projection.convertTo(half, CV_16F);
+  half.convertTo(back_to_float, CV_32F);
+  EXPECT_EQ(cv::norm(back_to_float, model.parts[0].projection, cv::NORM_INF), 0.0);
   testing::TempDir dir;
-  const std::string path = (dir / "model.yml").string();
+  const std::string path = (dir / "model.yml.gz").string();
   EXPECT_THROW(model.save(path), ProcessingError);  // the matcher must say what the features are
   model.features = "synthetic1";
+  model.variant = "both-halves";
+  model.feature_mean = cv::Mat(1, 3, CV_32F, cv::Scalar(0.25f));
   model.save(path);
   const XqdaEnsemble back = XqdaEnsemble::load(path);
   EXPECT_EQ(back.id, model.id);
   EXPECT_EQ(back.id.size(), 8u);
   EXPECT_EQ(back.features, "synthetic1");
+  EXPECT_EQ(back.variant, "both-halves");
+  ASSERT_EQ(back.feature_mean.cols, 3);
+  EXPECT_FLOAT_EQ(back.feature_mean.at<float>(0, 2), 0.25f);
   EXPECT_DOUBLE_EQ(back.threshold, model.threshold);
   EXPECT_EQ(back.embed(s.features[0]), model.embed(s.features[0]));
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "none.yml").string()); }),
@@ -143,6 +186,15 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   const std::string v1 = testing::input_error([&] { XqdaEnsemble::load((dir / "v1.yml").string()); });
   EXPECT_TRUE(testing::contains(v1, "format_version' 1")) << v1;
   EXPECT_TRUE(testing::contains(v1, "train-reid")) << v1;
+  // Version 2 (float32 projections, lomo3 features) is refused the same way.
+  testing::write_text(dir / "v2.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 2\nfeatures: lomo3\n");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "v2.yml").string()); }),
+                                "format_version' 2"));
+  // A part without its projection names the field.
+  testing::write_text(dir / "noproj.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 3\nfeatures: x\n"
+                                          "threshold: 1.\nparts:\n  - { threshold: 1. }\n");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "noproj.yml").string()); }),
+                                "projection_float16"));
   testing::write_text(dir / "garbage.yml", "\x01\x02 not yaml {{{");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "garbage.yml").string()); }),
                                 "garbage.yml"));
