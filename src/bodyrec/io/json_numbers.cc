@@ -22,8 +22,9 @@ double round_significant(double v, int digits) {
   if (!std::isfinite(v) || v == 0) return v;
   const double magnitude = std::fabs(v);
   const int integer_digits = magnitude >= 1 ? static_cast<int>(std::floor(std::log10(magnitude))) + 1 : 0;
-  // Large numbers keep three decimals: Unix times in seconds carry milliseconds (latency is read from them).
-  const int keep = std::clamp(std::max(digits, integer_digits + 3), 1, 17);
+  // Numbers with `digits` integer digits or more keep three decimals: Unix times in seconds carry
+  // milliseconds (latency is read from them).
+  const int keep = std::clamp(integer_digits >= digits ? integer_digits + 3 : digits, 1, 17);
   char text[64];
   std::snprintf(text, sizeof text, "%.*g", keep, v);
   return std::strtod(text, nullptr);

@@ -23,7 +23,8 @@ TEST(JsonNumbers, DoublesKeepSixSignificantDigits) {
   EXPECT_EQ(json_text(1.0 / 3), "0.333333");
   EXPECT_EQ(json_text(-2.0 / 3e-9), "-666666666.667");  // the integer part and three decimals are kept
   EXPECT_EQ(json_text(1733312345.25), "1733312345.25");    // a Unix time keeps its milliseconds
-  EXPECT_EQ(json_text(12345.6789), "12345.679");
+  EXPECT_EQ(json_text(12345.6789), "12345.7");
+  EXPECT_EQ(json_text(123456.789), "123456.789");
   EXPECT_EQ(json_text(1.23456789e-7), "1.23457e-07");
   EXPECT_EQ(json_text(504.41), "504.41");  // already short: unchanged
   EXPECT_EQ(json_text(0.0), "0.0");

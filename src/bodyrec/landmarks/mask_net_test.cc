@@ -84,22 +84,22 @@ TEST(MaskNet, OptionsAreChecked) {
   MaskNetTrainOptions o;
   EXPECT_NO_THROW(o.check());
   o.input_width = 30;
-  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--net-size"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.input_width"));
   o = MaskNetTrainOptions();
   o.iterations = 0;
-  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--iterations"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.iterations"));
   o = MaskNetTrainOptions();
   o.box_jitter = 0.9;
-  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--box-jitter"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.box_jitter"));
   o = MaskNetTrainOptions();
   o.weight_decay = -1e-4;
-  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.weight_decay"));
   o.weight_decay = std::nan("");
-  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--weight-decay"));
+  EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.weight_decay"));
   for (int networks : {0, kMaxNetworks + 1}) {
     o = MaskNetTrainOptions();
     o.networks = networks;
-    EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "--networks"));
+    EXPECT_TRUE(testing::contains(testing::usage_error([&] { o.check(); }), "MaskNetTrainOptions.networks"));
   }
   EXPECT_THROW(train_body_mask_net(LandmarkDataset{}, MaskNetTrainOptions{}), ProcessingError);
 }
