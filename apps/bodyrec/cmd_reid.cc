@@ -5,11 +5,13 @@
 // database, and the events go over MQTT with --events (issue 47).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
 
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
+#include "bodyrec/store/postgres.h"
 #include "command.h"
 #include "event_options.h"
 #include "reid_output.h"
@@ -24,7 +26,23 @@ struct ReidCommand {
   EventCliOptions event_options;
   bool json = false, quiet = false;
 
+  // A gallery file that this run creates is removed again when the run fails before its first frame, so a
+  // refused input or an unwritable output leaves no empty gallery behind.
   void run() const {
+    const std::string& path = options.gallery.path;
+    std::error_code ec;
+    const bool new_file = !sql::is_postgres_uri(path) && !std::filesystem::exists(path, ec);
+    bool processed = false;
+    try {
+      run_frames(processed);
+    } catch (...) {
+      if (new_file && !processed)
+        for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::filesystem::remove(path + suffix, ec);
+      throw;
+    }
+  }
+
+  void run_frames(bool& processed) const {
     check_input_given(input, options.orient.live, options.colour.camera);
     StopOnSignal stop;  // SIGINT/SIGTERM: the run ends after its frame, outputs whole, gallery committed, exit 0
     ReidInput in = open_reid_input(input, options);  // before any file is created
@@ -43,6 +61,7 @@ struct ReidCommand {
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
     const ReidRunStats stats = run_reid(in, o, store, [&](const ReidFrame& f) {
+      processed = true;
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;

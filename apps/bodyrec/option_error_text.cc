@@ -19,6 +19,8 @@ const std::map<std::string, std::string> kFlagOf = {
     {"MaskNetTrainOptions.input_width", "--net-size"}, {"MaskNetTrainOptions.input_height", "--net-size"},
     {"MaskNetTrainOptions.threshold", "--mask-threshold"}, {"ContourSetOptions.pennfudan_dir", "--pennfudan"},
     {"ContourSetOptions.out_dir", "--out"},           {"DifferentialMotionOptions.work_width", "--motion-width"},
+    {"GroupOptions.evidence_half_life_s", "--half-life"}, {"GroupOptions.min_moving_fraction", "--min-moving"},
+    {"ForegroundOptions.history", "--background-history"},
 };
 
 // The innermost subcommand that was parsed (bodyrec -> eval -> reid).

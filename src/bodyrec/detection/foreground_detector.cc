@@ -11,14 +11,14 @@
 namespace bodyrec {
 
 void ForegroundOptions::check() const {
-  if (!(work_width >= 32)) throw UsageError("foreground: work width must be >= 32 pixels");
-  if (history < 1) throw UsageError("foreground: history must be >= 1 frame");
-  if (!(var_threshold > 0)) throw UsageError("foreground: variance threshold must be > 0");
-  if (warmup_frames < 0) throw UsageError("foreground: warm-up must be >= 0 frames");
-  if (!(min_height > 0 && min_height < 1)) throw UsageError("foreground: min height must be in (0, 1)");
-  if (!(min_fill >= 0 && min_fill < 1)) throw UsageError("foreground: min fill must be in [0, 1)");
+  if (!(work_width >= 32)) throw OptionError("ForegroundOptions", "work_width", "must be >= 32 pixels");
+  if (history < 1) throw OptionError("ForegroundOptions", "history", "must be >= 1 frame");
+  if (!(var_threshold > 0)) throw OptionError("ForegroundOptions", "var_threshold", "must be > 0");
+  if (warmup_frames < 0) throw OptionError("ForegroundOptions", "warmup_frames", "must be >= 0 frames");
+  if (!(min_height > 0 && min_height < 1)) throw OptionError("ForegroundOptions", "min_height", "must be in (0, 1)");
+  if (!(min_fill >= 0 && min_fill < 1)) throw OptionError("ForegroundOptions", "min_fill", "must be in [0, 1)");
   if (!(person_aspect > 0) || !(max_aspect >= person_aspect))
-    throw UsageError("foreground: person aspect must be > 0 and at most max aspect");
+    throw OptionError("ForegroundOptions", "person_aspect", "must be > 0 and at most max_aspect");
 }
 
 ForegroundModel::ForegroundModel(const ForegroundOptions& options)

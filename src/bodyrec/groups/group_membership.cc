@@ -16,21 +16,21 @@ std::pair<int, int> key(int a, int b) { return a < b ? std::make_pair(a, b) : st
 
 void require_positive(double v, const char* name) {
   if (!(v > 0) || !std::isfinite(v))
-    throw UsageError(std::string("group options: ") + name + " must be a positive number, got " + std::to_string(v));
+    throw OptionError("GroupOptions", name, "must be a positive number, got " + std::to_string(v));
 }
 
 }  // namespace
 
 void GroupOptions::check() const {
-  if (!(window_s > 0)) throw UsageError("group options: window_s must be > 0, got " + std::to_string(window_s));
+  if (!(window_s > 0)) throw OptionError("GroupOptions", "window_s", "must be > 0, got " + std::to_string(window_s));
   require_positive(velocity_span_s, "velocity_span_s");
   require_positive(max_history_s, "max_history_s");
   require_positive(units_per_metre, "units_per_metre");
   require_positive(forget_after_s, "forget_after_s");
   if (!(evidence_half_life_s >= 0) || !std::isfinite(evidence_half_life_s))
-    throw UsageError("group options: evidence_half_life_s must be >= 0, got " + std::to_string(evidence_half_life_s));
+    throw OptionError("GroupOptions", "evidence_half_life_s", "must be >= 0, got " + std::to_string(evidence_half_life_s));
   if (!(min_moving_fraction >= 0 && min_moving_fraction <= 1))
-    throw UsageError("group options: min_moving_fraction must be in [0, 1], got " + std::to_string(min_moving_fraction));
+    throw OptionError("GroupOptions", "min_moving_fraction", "must be in [0, 1], got " + std::to_string(min_moving_fraction));
 }
 
 GroupOptions options_for(std::shared_ptr<const PairModel> model, GroupOptions base) {

@@ -179,9 +179,9 @@ std::vector<std::string> image_files_in(const std::string& dir) {
 void SourceOptions::check() const {
   if (path.empty() && camera < 0) throw UsageError("no input: give a SOURCE path or --camera N");
   if (!path.empty() && camera >= 0) throw UsageError("give either a SOURCE path or --camera, not both");
-  if (start < 0) throw UsageError("--start must be >= 0 (got " + std::to_string(start) + ")");
-  if (every < 1) throw UsageError("--every must be >= 1 (got " + std::to_string(every) + ")");
-  if (max_frames < -1) throw UsageError("--max-frames must be >= 0, or -1 for all");
+  if (start < 0) throw OptionError("SourceOptions", "start", "must be >= 0 (got " + std::to_string(start) + ")");
+  if (every < 1) throw OptionError("SourceOptions", "every", "must be >= 1 (got " + std::to_string(every) + ")");
+  if (max_frames < -1) throw OptionError("SourceOptions", "max_frames", "must be >= 0, or -1 for all");
 }
 
 bool is_image_path(const std::string& path) {

@@ -296,13 +296,13 @@ TEST(SourceOptions, CheckMessagesNameTheOption) {
   SourceOptions o;
   o.path = "v.avi";
   o.every = -3;
-  EXPECT_EQ(usage(o), "--every must be >= 1 (got -3)");
+  EXPECT_EQ(usage(o), "SourceOptions.every must be >= 1 (got -3)");
   o.every = 1;
   o.start = -2;
-  EXPECT_EQ(usage(o), "--start must be >= 0 (got -2)");
+  EXPECT_EQ(usage(o), "SourceOptions.start must be >= 0 (got -2)");
   o.start = 0;
   o.max_frames = -2;
-  EXPECT_NE(usage(o).find("--max-frames"), std::string::npos);
+  EXPECT_NE(usage(o).find("SourceOptions.max_frames"), std::string::npos);
   o.max_frames = 0;
   EXPECT_NO_THROW(o.check());
   o.camera = 1;

@@ -27,9 +27,9 @@ cv::Mat ForegroundBodyMask::mask(const cv::Mat& frame, const cv::Rect& box) {
 }
 
 void ColourScanOptions::check() const {
-  if (min_pixels < 1) throw UsageError("colour scans: min_pixels must be >= 1");
-  if (margin_px < 0) throw UsageError("colour scans: margin_px must be >= 0");
-  if (!(sharpness_ref > 0)) throw UsageError("colour scans: sharpness_ref must be > 0");
+  if (min_pixels < 1) throw OptionError("ColourScanOptions", "min_pixels", "must be >= 1");
+  if (margin_px < 0) throw OptionError("ColourScanOptions", "margin_px", "must be >= 0");
+  if (!(sharpness_ref > 0)) throw OptionError("ColourScanOptions", "sharpness_ref", "must be > 0");
 }
 
 std::optional<PartialScan> colour_scan(const cv::Mat& frame, const cv::Rect& box, const cv::Mat& mask,

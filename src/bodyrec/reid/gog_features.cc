@@ -108,10 +108,10 @@ void append_log_gaussian(const std::vector<double>& mu, std::vector<double> cov,
 }  // namespace
 
 void GogOptions::check() const {
-  if (patch < 2 || stride < 1) throw UsageError("GOG: patch must be >= 2 and stride >= 1");
-  if (width < patch || height < 8) throw UsageError("GOG: image size must be at least one patch and 8 rows");
-  if (regions < 1) throw UsageError("GOG: regions must be >= 1");
-  if (!(epsilon > 0)) throw UsageError("GOG: epsilon must be > 0");
+  if (patch < 2 || stride < 1) throw OptionError("GogOptions", "patch", "must be >= 2, and stride >= 1");
+  if (width < patch || height < 8) throw OptionError("GogOptions", "width", "and height must be at least one patch and 8 rows");
+  if (regions < 1) throw OptionError("GogOptions", "regions", "must be >= 1");
+  if (!(epsilon > 0)) throw OptionError("GogOptions", "epsilon", "must be > 0");
 }
 
 int gog_length(GogColour colour, const GogOptions& o) {

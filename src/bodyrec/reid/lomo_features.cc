@@ -193,11 +193,11 @@ std::vector<float> finish(std::vector<float> (&views)[2], bool mirror, int max_c
 }  // namespace
 
 void LomoOptions::check() const {
-  if (width < patch || height < patch) throw UsageError("LOMO: image size must be at least one patch");
-  if (patch < 1 || stride < 1) throw UsageError("LOMO: patch and stride must be positive");
-  if (scales < 1) throw UsageError("LOMO: scales must be >= 1");
-  if (hsv_bins < 2 || hsv_bins > 32) throw UsageError("LOMO: hsv_bins must be in 2..32");
-  if (siltp_tau <= 0 || siltp_tau >= 1) throw UsageError("LOMO: siltp_tau must be in (0, 1)");
+  if (width < patch || height < patch) throw OptionError("LomoOptions", "width", "and height must be at least one patch");
+  if (patch < 1 || stride < 1) throw OptionError("LomoOptions", "patch", "and stride must be positive");
+  if (scales < 1) throw OptionError("LomoOptions", "scales", "must be >= 1");
+  if (hsv_bins < 2 || hsv_bins > 32) throw OptionError("LomoOptions", "hsv_bins", "must be in 2..32");
+  if (siltp_tau <= 0 || siltp_tau >= 1) throw OptionError("LomoOptions", "siltp_tau", "must be in (0, 1)");
 }
 
 int lomo_colour_length(const LomoOptions& o) { return total_patch_rows(o) * o.hsv_bins * o.hsv_bins * o.hsv_bins; }

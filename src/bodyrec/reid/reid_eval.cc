@@ -58,10 +58,10 @@ std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const 
 }
 
 void ReidEvalOptions::check() const {
-  if (splits < 1) throw UsageError("--splits must be >= 1");
-  if (train_ids < -1) throw UsageError("--train-ids must be >= 0");
+  if (splits < 1) throw OptionError("ReidEvalOptions", "splits", "must be >= 1");
+  if (train_ids < -1) throw OptionError("ReidEvalOptions", "train_ids", "must be >= 0");
   if (resize.width < 0 || resize.height < 0 || (resize.width == 0) != (resize.height == 0))
-    throw UsageError("--resize must have a positive width and height");
+    throw OptionError("ReidEvalOptions", "resize", "must have a positive width and height");
 }
 
 ReidEvalResult evaluate_reid(const ReidDataset& given, const MatcherFactory& make, const ReidEvalOptions& options) {

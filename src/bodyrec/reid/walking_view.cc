@@ -30,12 +30,17 @@ double sector_margin(double yaw_deg) {
 }  // namespace
 
 void WalkingViewOptions::check() const {
-  if (!(window_s > 0)) throw UsageError("walking views: window_s must be > 0");
-  if (min_samples < 2) throw UsageError("walking views: min_samples must be >= 2");
-  if (!(assumed_stature_m > 0) || !(focal_ratio > 0)) throw UsageError("walking views: assumed stature and focal ratio must be > 0");
-  if (face_every < 1) throw UsageError("walking views: face_every must be >= 1");
-  for (double v : {min_speed_mps, hold_s, face_weight, no_face_weight, motion_weight, evidence_cap, forget_s})
-    if (!(v >= 0)) throw UsageError("walking views: speeds, times and weights must be >= 0");
+  if (!(window_s > 0)) throw OptionError("WalkingViewOptions", "window_s", "must be > 0");
+  if (min_samples < 2) throw OptionError("WalkingViewOptions", "min_samples", "must be >= 2");
+  if (!(assumed_stature_m > 0)) throw OptionError("WalkingViewOptions", "assumed_stature_m", "must be > 0");
+  if (!(focal_ratio > 0)) throw OptionError("WalkingViewOptions", "focal_ratio", "must be > 0");
+  if (face_every < 1) throw OptionError("WalkingViewOptions", "face_every", "must be >= 1");
+  const std::pair<const char*, double> non_negative[] = {
+      {"min_speed_mps", min_speed_mps}, {"hold_s", hold_s}, {"face_weight", face_weight},
+      {"no_face_weight", no_face_weight}, {"motion_weight", motion_weight}, {"evidence_cap", evidence_cap},
+      {"forget_s", forget_s}};
+  for (const auto& [field, value] : non_negative)
+    if (!(value >= 0)) throw OptionError("WalkingViewOptions", field, "must be >= 0");
 }
 
 WalkingViewEstimator::WalkingViewEstimator(const WalkingViewOptions& options, const ColourGround* ground)

@@ -84,8 +84,8 @@ double different_person_median(const std::vector<std::pair<double, bool>>& pairs
 }  // namespace xqda_detail
 
 void XqdaOptions::check() const {
-  if (!(regulariser > 0)) throw UsageError("XQDA: regulariser must be > 0");
-  if (max_dims < 0) throw UsageError("XQDA: max_dims must be >= 0");
+  if (!(regulariser > 0)) throw OptionError("XqdaOptions", "regulariser", "must be > 0");
+  if (max_dims < 0) throw OptionError("XqdaOptions", "max_dims", "must be >= 0");
 }
 
 double squared_distance(DescriptorView a, DescriptorView b) {

@@ -13,9 +13,9 @@
 namespace bodyrec {
 
 void GalleryOptions::check() const {
-  if (create && read_only) throw UsageError("gallery: create and read-only cannot be combined");
-  if (busy_timeout_ms < 0) throw UsageError("gallery: busy timeout must be >= 0 ms");
-  if (max_events_per_user < 0) throw UsageError("gallery: the events kept per user must be >= 0 (0 = all)");
+  if (create && read_only) throw OptionError("GalleryOptions", "create", "cannot be combined with read_only");
+  if (busy_timeout_ms < 0) throw OptionError("GalleryOptions", "busy_timeout_ms", "must be >= 0");
+  if (max_events_per_user < 0) throw OptionError("GalleryOptions", "max_events_per_user", "must be >= 0 (0 = all)");
 }
 
 Gallery::Gallery(const std::string& path, const GalleryOptions& options) : path_(path), options_(options) {

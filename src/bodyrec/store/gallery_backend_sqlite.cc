@@ -25,7 +25,7 @@ void create_private_file(const std::string& path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
   if (fd < 0) {
     if (errno == EEXIST) return;
-    throw InputError(path + ": cannot create gallery: " + std::strerror(errno));
+    throw ProcessingError(path + ": cannot create gallery: " + std::strerror(errno));  // an output: exit 4
   }
   const int rc = ::fchmod(fd, 0600);
   const int saved = errno;
