@@ -248,7 +248,8 @@ TEST_P(GallerySuite, EventHistoryKeepsTheNewestEventsPerUser) {
     if (!e.user) ++unowned;
   EXPECT_EQ(unowned, 5);
   o.max_events_per_user = -1;
-  EXPECT_TRUE(contains(bodyrec::testing::usage_error([&] { Gallery(fresh(), o); }), "events kept per user"));
+  EXPECT_TRUE(contains(bodyrec::testing::usage_error([&] { Gallery(fresh(), o); }),
+                       "GalleryOptions.max_events_per_user must be >= 0"));
 }
 
 TEST_P(GallerySuite, EventHistoryIsUnlimitedWithZero) {
