@@ -56,11 +56,7 @@ struct ReidCommand {
     const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
                                : in.source                 ? in.source->name()
                                                            : input;
-    // Gallery times follow the source's own clock (the run's start plus each frame's time), so first and
-    // last seen are the recording's, however fast it is processed; a live source's frames come in wall time.
-    const bool live = options.orient.live.live() || options.colour.camera >= 0;
-    GalleryReidStore store(*gallery, *in.matcher,
-                           {source, live ? std::nullopt : std::optional<GalleryTime>(GalleryClock::now())});
+    GalleryReidStore store(*gallery, *in.matcher, {source, std::nullopt});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
