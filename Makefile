@@ -6,7 +6,7 @@ VTEST    ?= /usr/share/doc/opencv-doc/examples/data/vtest.avi
 CMAKE_FLAGS ?=
 BIN      := $(BUILD)/bin/bodyrec
 
-.PHONY: all deps configure build program run test test-asan test-data bench clean fuzz
+.PHONY: all deps configure build program run test test-asan test-data bench clean fuzz reid-model
 
 all: build
 
@@ -74,6 +74,12 @@ fuzz: deps
 	    -DBODYREC_FUZZ=ON $(CMAKE_FLAGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	scripts/fuzz --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
+# The default re-identification metric (models/reid-default.yml.gz, models/README.md), trained on VIPeR
+# from the datasets: it is too large to keep in the repository (16 MB).
+VIPER_ARGS = --root $(DATA)/viper --id-regex '^images/(\d{4})' --cam-regex '^images/\d{4}(\d{4})'
+reid-model: program
+	$(BIN) train-reid $(VIPER_ARGS) --out models/reid-default.yml.gz
 
 bench: deps configure
 	cmake --build $(BUILD) -j $(JOBS)

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include "bodyrec/core/model_files.h"
+#include "bodyrec/reid/appearance_matcher.h"
 #include "test_support.h"
 
 namespace bodyrec::testing {
@@ -35,6 +37,8 @@ RunResult eval_on_all(const std::filesystem::path& root, const std::vector<std::
 
 TEST(ShippedReidModel, IsFoundWithoutAFlagAndScoresItsFigure) {
   BODYREC_REQUIRE_DATA(root, "viper");
+  if (!find_model_file(kShippedReidModel))
+    GTEST_SKIP() << "no " << kShippedReidModel << ": make it with `make reid-model`";
   const RunResult r = eval_on_all(root, {});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = last_json_line(r.out);

@@ -133,7 +133,7 @@ std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const s
     const std::string path =
         !model_path.empty() ? model_path
                             : require_model_file(kShippedReidModel,
-                                                 "it is trained by bodyrec train-reid (models/README.md has the command)");
+                                                 "make it with `make reid-model`, or bodyrec train-reid on your own people (models/README.md)");
     return make_learned_matcher(LearnedMatcherKind::kDefault, XqdaEnsemble::load(path), path);
   }
   unknown_matcher(name);
