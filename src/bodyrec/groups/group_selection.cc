@@ -79,6 +79,15 @@ std::vector<RuleWindow> final_rule_windows(const ScenePairs& pairs, const std::v
   return out;
 }
 
+// A fitted model carries the candidate's settings and the scenes it was fitted on.
+void take_settings(PairModel& model, const GroupCandidate& c, const std::vector<std::string>& trained_on) {
+  model.trained_on = trained_on;
+  model.window_s = c.window_s;
+  model.velocity_span_s = c.velocity_span_s;
+  model.min_moving_fraction = c.min_moving_fraction;
+  model.linkage = c.linkage;
+}
+
 }  // namespace
 
 std::string describe(const GroupCandidate& c) {
@@ -273,11 +282,7 @@ const FittedGroupMethod& GroupSelection::fit(const GroupCandidate& c, const std:
     model.features = distance_speed_features();
     model.scale.fill(1.0);
     model.weights[0] = 1;
-    model.trained_on = f.trained_on;
-    model.window_s = c.window_s;
-    model.velocity_span_s = c.velocity_span_s;
-    model.min_moving_fraction = c.min_moving_fraction;
-    model.linkage = c.linkage;
+    take_settings(model, c, f.trained_on);
     // Each pair's evidence is the mean vote (+1 / -1) of its final windows: found once per scene, then
     // scored for every pair of thresholds (the same arithmetic as window_evidence, so the same evidence).
     std::vector<std::vector<RuleWindow>> final;
@@ -336,11 +341,7 @@ const FittedGroupMethod& GroupSelection::fit(const GroupCandidate& c, const std:
       logistic = std::make_shared<const PairModel>(train_pair_model(examples, c.l2, c.features));
     }
     PairModel model = *logistic;
-    model.trained_on = f.trained_on;
-    model.window_s = c.window_s;
-    model.velocity_span_s = c.velocity_span_s;
-    model.min_moving_fraction = c.min_moving_fraction;
-    model.linkage = c.linkage;
+    take_settings(model, c, f.trained_on);
 
     // The decision threshold: evidence is a (weighted) mean of log-odds, so shifting the bias shifts every
     // pair's evidence by the same amount; pick the shift with the best mean F1 on the training scenes.

@@ -71,15 +71,7 @@ std::optional<PartialScan> colour_scan(const cv::Mat& frame, const cv::Rect& box
           static_cast<float>(*stature_m * std::clamp(1.0 - (y - top + 0.5) / rows, 0.0, 1.0));
   }
 
-  cv::Mat grey, lap, inner;
-  cv::cvtColor(frame(s.box), grey, cv::COLOR_BGR2GRAY);
-  cv::Laplacian(grey, lap, CV_32F, 3);
-  cv::erode(s.mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(5, 5)));
-  if (cv::countNonZero(inner) < 50) inner = s.mask;
-  cv::Scalar mean, stddev;
-  cv::meanStdDev(lap, mean, stddev, inner);
-  const double var = stddev[0] * stddev[0];
-  s.sharpness = var / (var + options.sharpness_ref);
+  s.sharpness = mask_sharpness(frame(s.box), s.mask, 5, options.sharpness_ref);
   s.resolution = std::min(1.0, tight.height / (0.5 * frame.rows));
 
   const bool top_or_bottom = box.y <= 0 || box.br().y >= frame.rows || tight.y <= 0 || tight.br().y >= frame.rows;

@@ -8,6 +8,18 @@
 #include "bodyrec/core/error.h"
 
 namespace bodyrec {
+
+double mask_sharpness(const cv::Mat& bgr, const cv::Mat& mask, int erode_px, double ref) {
+  cv::Mat grey, lap, inner;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  cv::Laplacian(grey, lap, CV_32F, 3);
+  cv::erode(mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(erode_px, erode_px)));
+  if (cv::countNonZero(inner) < 50) inner = mask;
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(lap, mean, stddev, inner);
+  const double var = stddev[0] * stddev[0];
+  return var / (var + ref);
+}
 namespace {
 
 // Largest 8-connected part of a binary mask, in place.
@@ -145,16 +157,7 @@ std::optional<PartialScan> PartialScanExtractor::extract(const RgbdFrame& frame,
     }
   }
 
-  // Sharpness: Laplacian variance inside the eroded mask (the mask edge itself is not texture).
-  cv::Mat grey, lap, inner;
-  cv::cvtColor(frame.color(s.box), grey, cv::COLOR_BGR2GRAY);
-  cv::Laplacian(grey, lap, CV_32F, 3);
-  cv::erode(s.mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(7, 7)));
-  if (cv::countNonZero(inner) < 50) inner = s.mask;
-  cv::Scalar mean, stddev;
-  cv::meanStdDev(lap, mean, stddev, inner);
-  const double var = stddev[0] * stddev[0];
-  s.sharpness = var / (var + options_.sharpness_ref);
+  s.sharpness = mask_sharpness(frame.color(s.box), s.mask, 7, options_.sharpness_ref);
   s.resolution = std::min(1.0, tight.height / (0.5 * meta_.color.height));
 
   // Completeness.

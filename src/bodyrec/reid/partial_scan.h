@@ -84,4 +84,8 @@ class PartialScanExtractor {
   std::vector<float> ray_x_, ray_y_;
 };
 
+// Sharpness in 0..1 of a body crop: the Laplacian's variance inside `mask` eroded by an ellipse of `erode_px`
+// (the mask edge itself is not texture; the whole mask when under 50 pixels remain), as var / (var + ref).
+double mask_sharpness(const cv::Mat& bgr, const cv::Mat& mask, int erode_px, double ref);
+
 }  // namespace bodyrec
