@@ -10,6 +10,7 @@
 
 #include "bodyrec/core/model_files.h"
 #include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/learned_matcher.h"
 #include "test_support.h"
 
 namespace bodyrec::testing {
