@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "bodyrec/store/gallery.h"
 #include "bodyrec/store/gallery_export.h"
 #include "bodyrec/store/gallery_json.h"
@@ -65,7 +66,7 @@ void list(const GalleryCommand& c) {
                 format_utc(u.first_seen).c_str(), format_utc(u.last_seen).c_str());
     all.push_back(user_to_json(u));
   }
-  if (c.json) std::printf("%s\n", nlohmann::json({{"gallery", c.gallery.path}, {"users", all}}).dump().c_str());
+  if (c.json) std::printf("%s\n", json_text({{"gallery", c.gallery.path}, {"users", all}}).c_str());
 }
 
 void show(const GalleryCommand& c) {
@@ -93,14 +94,14 @@ void show(const GalleryCommand& c) {
   for (const Event& e : events) {
     std::string line = format_utc(e.time) + "  " + event_kind_name(e.kind);
     if (e.view) line += std::string("  view ") + view_name(*e.view);
-    if (e.score) line += "  score " + nlohmann::json(*e.score).dump();
+    if (e.score) line += "  score " + json_text(*e.score);
     if (e.track) line += "  track " + std::to_string(*e.track);
     if (!e.source.empty()) line += "  source " + e.source;
     if (!e.sensor.empty()) line += "  sensor " + e.sensor;
     std::printf("%s\n", line.c_str());
     j["events"].push_back(event_to_json(e));
   }
-  if (c.json) std::printf("%s\n", j.dump().c_str());
+  if (c.json) std::printf("%s\n", json_text(j).c_str());
 }
 
 void export_command(const GalleryCommand& c) {
@@ -110,9 +111,8 @@ void export_command(const GalleryCommand& c) {
   std::printf("exported user %lld to %s: %d scans (%d images, %d masks, their features in user.json), %d events\n",
               static_cast<long long>(id), c.dir.c_str(), r.scans, r.images, r.masks, r.events);
   if (c.json)
-    std::printf("%s\n", nlohmann::json({{"user", id}, {"dir", c.dir}, {"scans", r.scans}, {"images", r.images},
-                                        {"masks", r.masks}, {"events", r.events}, {"files", r.files}})
-                            .dump()
+    std::printf("%s\n", json_text({{"user", id}, {"dir", c.dir}, {"scans", r.scans}, {"images", r.images},
+                                   {"masks", r.masks}, {"events", r.events}, {"files", r.files}})
                             .c_str());
 }
 
@@ -123,7 +123,7 @@ void forget(const GalleryCommand& c) {
   std::printf("forgot user %lld: erased %s; %s %s\n", static_cast<long long>(id), erased_summary(r).c_str(),
               c.gallery.path.c_str(), vacuumed(r));
   note_scrub(r);
-  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
 }
 
 void purge(const GalleryCommand& c) {
@@ -135,7 +135,7 @@ void purge(const GalleryCommand& c) {
   std::printf("purged %s: erased %zu users, %s; %s\n", c.gallery.path.c_str(), r.users.size(),
               erased_summary(r).c_str(), vacuumed(r));
   note_scrub(r);
-  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
 }
 
 void prune(const GalleryCommand& c) {
@@ -148,7 +148,7 @@ void prune(const GalleryCommand& c) {
   std::printf("pruned %zu users not seen since %s%s%s: erased %s\n", r.users.size(),
               format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
   note_scrub(r);
-  if (c.json) std::printf("%s\n", erase_json(r).dump().c_str());
+  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
 }
 
 void add(CLI::App& app) {

@@ -7,6 +7,7 @@
 #include <ctime>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/json_numbers.h"
 #include "option_checks.h"
 
 namespace bodyrec::cli {
@@ -97,7 +98,7 @@ void RunEvents::publish(nlohmann::json payload) {
   payload["sensor"] = sensor;
   payload["run"] = ids.run_id();
   payload["wall_time"] = wall_time_now();
-  publisher->publish(topic, payload.dump());
+  publisher->publish(topic, json_text(payload));
 }
 
 nlohmann::json RunEvents::finish() {

@@ -94,6 +94,30 @@ TEST(GalleryCli, ShowByIdOrLabel) {
   EXPECT_EQ(bad.err, "bodyrec: error: " + path + ": no user with id or label 'bob'\n");
 }
 
+// Numbers print with the precision they carry, as in every other JSON output (io/json_numbers.h).
+TEST(GalleryCli, ShowPrintsRoundedNumbers) {
+  TempDir dir;
+  const std::string path = (dir / "g.db").string();
+  {
+    GalleryOptions o;
+    o.create = true;
+    Gallery g(path, o);
+    const UserId u = g.enrol(scan_at(View::F, 0.1 * 0.7857, 1, 0));
+    Event e;
+    e.user = u;
+    e.kind = EventKind::kRecognised;
+    e.score = 24.123456789;
+    e.time = kT0;
+    g.log_event(e);
+  }
+  const RunResult r = run_bodyrec({"gallery", "--gallery", path, "show", "1", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "score 24.1235")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\"quality\":0.07857,")) << r.out;
+  EXPECT_TRUE(contains(r.out, "\"score\":24.1235")) << r.out;
+  EXPECT_FALSE(contains(r.out, "0.07856999")) << r.out;
+}
+
 TEST(GalleryCli, ExportWritesTheStoredPngsAndAJson) {
   TempDir dir;
   const std::string path = make_gallery(dir);
