@@ -56,7 +56,7 @@ struct ReidCommand {
     const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
                                : in.source                 ? in.source->name()
                                                            : input;
-    GalleryReidStore store(*gallery, *in.matcher, {source, std::nullopt});
+    GalleryReidStore store(*gallery, *in.matcher, {source, gallery_clock_start(in, options)});
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;

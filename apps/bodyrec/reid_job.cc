@@ -5,6 +5,7 @@
 #include "bodyrec/core/error.h"
 #include "enum_option.h"
 #include "option_checks.h"
+#include "source_clock.h"
 
 namespace bodyrec::cli {
 
@@ -116,6 +117,20 @@ ReidInput open_reid_input(const std::string& input, const ReidCliOptions& option
                      ": re-identification needs colour and depth streams");
   in.matcher = make_matcher(options.matcher, options.model);
   return in;
+}
+
+std::optional<GalleryTime> gallery_clock_start(const ReidInput& in, const ReidCliOptions& options) {
+  if (options.orient.live.live() || options.colour.camera >= 0) return std::nullopt;
+  const GalleryTime now = GalleryClock::now();
+  if (in.colour && in.colour->frames) {
+    const auto fps = in.colour->frames->fps();
+    const auto count = in.colour->frames->frame_count();
+    if (!in.colour->video || !fps || !count || *fps <= 0) return std::nullopt;
+    return file_source_start(in.path, *count / *fps, now);
+  }
+  if (!in.source) return std::nullopt;
+  const RecordingMeta& meta = in.source->meta();
+  return file_source_start(in.path + "/meta.json", meta.fps > 0 ? meta.frame_count / meta.fps : 0, now);
 }
 
 }  // namespace bodyrec::cli

@@ -71,6 +71,11 @@ struct ReidInput {
 };
 ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options);
 
+// The start of the clock that the run's gallery times follow (GalleryReidStoreOptions::start): a
+// recording's or a video file's own (source_clock.h), none (the wall clock) for a live source, a camera and
+// an image folder.
+std::optional<GalleryTime> gallery_clock_start(const ReidInput& in, const ReidCliOptions& options);
+
 struct ReidRunStats {
   int frames = 0;
   long dropped = 0;                  // live: frames dropped because processing fell behind
