@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bodyrec/core/percentile.h"
 #include "bodyrec/reid/gallery_reid_store.h"
 #include "bodyrec/reid/reid_pipeline.h"
 #include "colour_input.h"
@@ -89,8 +90,6 @@ struct ReidRunStats {
 ReidRunStats run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore& store,
                       const std::function<void(const ReidFrame&)>& sink);
 
-// The p-th percentile (0..100) of `values` (nearest rank); 0 when empty.
-double percentile(std::vector<double> values, double p);
 
 // Opens (or creates) the gallery the options name.
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);

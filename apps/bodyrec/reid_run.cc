@@ -132,12 +132,4 @@ ReidRunStats run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore
   return input.colour ? run_colour_reid(input, options, store, sink) : run_rgbd_reid(input, options, store, sink);
 }
 
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0;
-  std::sort(values.begin(), values.end());
-  const double rank = std::ceil(p / 100.0 * static_cast<double>(values.size()));
-  const size_t i = static_cast<size_t>(std::clamp(rank, 1.0, static_cast<double>(values.size()))) - 1;
-  return values[i];
-}
-
 }  // namespace bodyrec::cli

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bodyrec/core/percentile.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
 #include "bodyrec/report/svg.h"
@@ -146,10 +147,7 @@ void add_speed_section(const std::vector<StageTimes>& frames, std::vector<Sectio
     total.y.push_back(sum);
     totals.push_back(sum);
   }
-  auto p95 = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(0.95 * v.size())) - 1)];
-  };
+  auto p95 = [](const std::vector<double>& v) { return percentile(v, 95); };
   for (const auto& stage : stages) {
     std::vector<double> values;
     for (const auto& f : frames)

@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
+#include "bodyrec/core/percentile.h"
 #include "bodyrec/core/view.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
@@ -204,15 +206,51 @@ Section identities_section(const RunData& run) {
   for (int u : users) legend.emplace_back(palette(u), "user " + std::to_string(u));
   legend.emplace_back(user_colour(std::nullopt), "not identified");
   Section s{"identities", "Identity per body", ""};
+  const bool colour = std::any_of(run.reid.begin(), run.reid.end(), [](const ReidFrameRow& r) {
+    return std::any_of(r.ms.begin(), r.ms.end(), [](const auto& stage) { return stage.first == "detect"; });
+  });
   s.html = "<p>One row per tracked body (" + std::to_string(strips.size()) +
-           " tracks), coloured by the user it was identified as in each frame.</p>" + html_legend(legend) +
+           " tracks), coloured by the user it was identified as in each frame." +
+           (colour ? " Bodies from colour alone (the plain-camera pipeline: detector, tracker and body masks; "
+                     "no depth, so no stature)."
+                   : "") +
+           "</p>" + html_legend(legend) +
            strip_timeline(strips, run.reid.front().frame, run.reid.back().frame + 1, "frame");
+  return s;
+}
+
+// A live run (the rows carry "arrival"): frames dropped, and how long decisions took from the frame's
+// arrival to its line being written, over the frames with events (what a person waits for) and all frames.
+std::optional<Section> live_section(const RunData& run) {
+  std::vector<double> with_events, all;
+  long dropped = 0;
+  int frames = 0;
+  for (const auto& row : run.reid) {
+    if (row.dropped) dropped = std::max(dropped, *row.dropped);
+    if (row.end || !row.arrival || !row.wall) continue;
+    ++frames;
+    const double ms = (*row.wall - *row.arrival) * 1000.0;
+    all.push_back(ms);
+    if (!row.events.empty()) with_events.push_back(ms);
+  }
+  if (frames == 0) return std::nullopt;
+  auto latency = [](const std::vector<double>& v) {
+    return v.empty() ? std::string("–") : fmt(percentile(v, 50), 1) + " / " + fmt(percentile(v, 95), 1);
+  };
+  Section s{"live", "Live source", ""};
+  s.html = "<p>Frames came from a live source (a sensor, a camera, or a file played at its own rate with "
+           "<code>--realtime</code>). " + std::to_string(frames) + " frames processed, <b>" + std::to_string(dropped) +
+           "</b> dropped because processing fell behind.</p>" +
+           html_table({"latency from frame arrival to decision", "frames", "p50 / p95 ms"},
+                      {{"frames with events", std::to_string(with_events.size()), latency(with_events)},
+                       {"all frames", std::to_string(all.size()), latency(all)}});
   return s;
 }
 
 }  // namespace
 
 void add_reid_sections(const ReportInput& input, std::vector<Section>& out) {
+  if (auto live = live_section(input.run)) out.push_back(std::move(*live));
   out.push_back(events_section(input.run));
   out.push_back(identities_section(input.run));
 }

@@ -106,6 +106,31 @@ TEST(ReportSections, ReidRunGetsUsersEventsIdentities) {
             (std::vector<std::string>{"header", "users", "events", "identities", "speed", "evaluations"}));
 }
 
+// A live run's rows carry arrival, wall and dropped: the report says how many frames were dropped and
+// how long decisions took (nearest-rank p50 / p95 of wall - arrival).
+TEST(ReportSections, LiveReidRunShowsDroppedFramesAndLatency) {
+  ReportInput input;
+  input.run = reid_run();
+  for (auto& row : input.run.reid) {
+    row.arrival = 1795179600.0 + row.frame / 30.0;
+    row.wall = *row.arrival + (row.events.empty() ? 0.010 : 0.040 + row.frame / 1000.0);
+    row.dropped = row.frame / 10;
+    row.ms = {{"detect", 5.0}, {"reid", 2.0}};
+  }
+  const auto sections = build_sections(input);
+  EXPECT_EQ(ids(sections), (std::vector<std::string>{"header", "live", "events", "identities", "speed"}));
+  const std::string& html = sections[1].html;
+  EXPECT_NE(html.find("30 frames processed, <b>2</b> dropped"), std::string::npos) << html;
+  // Events at frames 5, 15, 20: 45, 55, 60 ms; all frames: 27 at 10 ms and those three.
+  EXPECT_NE(html.find("<td class=\"num\">3</td><td class=\"num\">55.0 / 60.0</td>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<td class=\"num\">30</td><td class=\"num\">10.0 / 55.0</td>"), std::string::npos) << html;
+  EXPECT_NE(sections[3].html.find("Bodies from colour alone"), std::string::npos);
+  // Not live: no section, and RGB-D bodies say nothing of colour.
+  ReportInput recorded;
+  recorded.run = reid_run();
+  EXPECT_EQ(ids(build_sections(recorded)).at(1), "events");
+}
+
 TEST(ReportSections, RoleTimelineHasOneRowPerTrackAndSegmentsPerRoleChange) {
   ReportInput input;
   input.run = groups_run();
@@ -260,6 +285,14 @@ TEST(ReportParse, ReadsGroupsAndReidRows) {
   EXPECT_EQ(*r.reid[1].bodies[0].user, 5);
   EXPECT_EQ(r.reid[1].events[0].kind, "enrolled");
   EXPECT_EQ(*r.reid[1].events[0].score, 12.5);
+  EXPECT_FALSE(r.reid[1].arrival.has_value());
+  std::istringstream live(R"({"frame":0,"bodies":[],"arrival":1795179600.25,"wall":1795179600.5,"dropped":3})");
+  const RunData l = parse_run(live, "l.jsonl");
+  EXPECT_EQ(*l.reid[0].arrival, 1795179600.25);
+  EXPECT_EQ(*l.reid[0].wall, 1795179600.5);
+  EXPECT_EQ(*l.reid[0].dropped, 3);
+  std::istringstream bad(R"({"frame":0,"bodies":[],"dropped":"3"})");
+  EXPECT_EQ(input_error([&] { parse_run(bad, "l.jsonl"); }), "l.jsonl:1: field 'dropped' is not an integer");
 }
 
 // `bodyrec reid` ends its JSONL with finish()'s events on a line marked "end": true, one frame after the

@@ -120,6 +120,9 @@ ReidFrameRow reid_row(const json& row, const Where& w) {
       r.events.push_back(event);
     }
   r.ms = w.ms(row);
+  if (row.contains("arrival")) r.arrival = w.number(row, "arrival");
+  if (row.contains("wall")) r.wall = w.number(row, "wall");
+  if (row.contains("dropped")) r.dropped = w.integer(row, "dropped");
   if (row.contains("end")) {
     if (!row["end"].is_boolean()) w.fail("field 'end' is not true or false");
     r.end = row["end"].get<bool>();

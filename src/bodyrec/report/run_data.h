@@ -65,6 +65,10 @@ struct ReidFrameRow {
   std::vector<ReidEvent> events;
   StageTimes ms;
   bool end = false;  // "end": true, the line after the last frame with the run's closing events: not a frame
+  // Live runs (a sensor, a camera, --realtime): when the frame came and when its line was written (Unix
+  // seconds), and the frames dropped so far because processing fell behind.
+  std::optional<double> arrival, wall;
+  std::optional<long> dropped;
 };
 
 enum class RunKind { kGroups, kReid };
