@@ -97,7 +97,44 @@ TEST(GreenScreenCli, WritesOneCutoutPerVisibleBodyAndRefusesBodiesOnlyRecordings
   ASSERT_EQ(run_bodyrec({"import", "ntu", (dir / "s.skeleton").string(), "--out", (dir / "ntu").string()}).exit_code, 0);
   const RunResult bad = run_bodyrec({"greenscreen", (dir / "ntu").string(), "--out", (dir / "cut2").string()});
   EXPECT_EQ(bad.exit_code, 3);
-  EXPECT_TRUE(contains(bad.err, "greenscreen needs colour, depth and body index streams")) << bad.err;
+  EXPECT_TRUE(contains(bad.err, "greenscreen needs colour and depth streams")) << bad.err;
+}
+
+// A sensor or recording without a body index (OpenNI2 sensors give none): bodies from the depth-only
+// segmentation, one cut-out per person it finds; --sensor without a device is one line and exit 3.
+TEST(GreenScreenCli, WithoutABodyIndexCutsOutSegmentedPeople) {
+  TempDir dir;
+  ASSERT_EQ(run_bodyrec({"synth", "--people", "1", "--seed", "3", "--frames", "30", "--out", (dir / "rec").string(), "-q"})
+                .exit_code,
+            0);
+  auto meta = nlohmann::json::parse(read_text(dir / "rec" / "meta.json"));
+  meta["streams"] = {"color", "depth"};
+  write_text(dir / "rec" / "meta.json", meta.dump());
+  const RunResult r = run_bodyrec({"greenscreen", (dir / "rec").string(), "--out", (dir / "cut").string(), "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["frames"], 30);
+  EXPECT_EQ(j["bodies_from"], "segmentation");
+  int visible = 0;  // frames where the one person shows enough of themselves to be segmented
+  for (int i = 0; i < 30; ++i) {
+    const auto truth = nlohmann::json::parse(read_text(dir / "rec" / "truth" / (frame_stem(i) + ".json")));
+    visible += truth["people"][0]["visible_fraction"].get<double>() > 0.5 ? 1 : 0;
+  }
+  EXPECT_GE(j["cutouts"].get<int>(), visible - 2) << r.out;
+  EXPECT_LE(j["cutouts"].get<int>(), 30) << r.out;
+  const cv::Mat cut = cv::imread((dir / "cut" / "000020_body0.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(cut.type(), CV_8UC4);
+  // The person's pixels and only theirs: opaque where the body index says person, mostly.
+  const cv::Mat truth = cv::imread((dir / "rec" / "bodyindex" / "000020.png").string(), cv::IMREAD_UNCHANGED);
+  std::vector<cv::Mat> channels;
+  cv::split(cut, channels);
+  const cv::Mat opaque = channels[3] > 0, person = truth != 255;
+  const double overlap = cv::countNonZero(opaque & person), union_px = cv::countNonZero(opaque | person);
+  EXPECT_GT(overlap / union_px, 0.8);
+
+  const RunResult none = run_bodyrec({"greenscreen", "--sensor", "--out", (dir / "live").string()});
+  EXPECT_EQ(none.exit_code, 3);
+  EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
 }
 
 }  // namespace
