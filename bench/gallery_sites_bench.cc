@@ -4,7 +4,8 @@
 // `recognised` event: one write transaction with the event-cap trim), refresh when nothing changed (what
 // reid does every frame), refresh after another connection logged an event (nothing to reload) or stored
 // a better scan (the whole feature cache is read again), open (connect, schema check, feature cache load), and forget (delete + scrub: SQLite
-// VACUUM + WAL checkpoint; PostgreSQL VACUUM FULL + CHECKPOINT).
+// VACUUM + WAL checkpoint; PostgreSQL VACUUM FULL + CHECKPOINT), and an enrolment under the write lock as reid
+// makes it (BM_LockedEnrol).
 //
 // Args: {backend (0 SQLite, 1 PostgreSQL), users}. SQLite files live in the system temp directory;
 // PostgreSQL is a private durable server (fsync on, Unix socket, tests/support/server_fixtures.h) on the same
@@ -17,6 +18,7 @@
 #include <benchmark/benchmark.h>
 #include <opencv2/imgproc.hpp>
 
+#include "bodyrec/reid/gallery_reid_store.h"
 #include "bodyrec/store/gallery.h"
 #include "server_fixtures.h"
 
@@ -194,6 +196,26 @@ void BM_Forget(benchmark::State& state) {
   }
 }
 
+// An enrolment as reid makes it (issue 47.2): under the gallery's write lock (GalleryReidStore::exclusive), take
+// in others' writes (refresh: here nothing changed), then the user with 4 views (with pixels) and its event.
+// Recognition costs the gallery one log_event (BM_LogEvent); matching reads the in-memory cache, the same on
+// both databases (reid_online_bench). Each iteration adds a user to the fixture gallery.
+void BM_LockedEnrol(benchmark::State& state) {
+  const std::string location = place().gallery(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  if (!available(state, location)) return;
+  Gallery g(location);
+  const auto matcher = make_matcher("stripes");
+  GalleryReidStore store(g, *matcher);
+  std::vector<GalleryScan> scans;
+  for (int v = 0; v < kViews; ++v) scans.push_back(scan(kFixtureViews[v], 0.5, 4000000 + v));
+  uint64_t track = 0;
+  for (auto _ : state)
+    store.exclusive([&] {
+      store.refresh();
+      benchmark::DoNotOptimize(store.enrol(scans, ++track, 0.0));
+    });
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
   for (int backend : {0, 1})
     for (int users : {1000, 10000}) b->Args({backend, users});
@@ -214,6 +236,7 @@ BENCHMARK(BM_RefreshAfterAnotherWrite)
     ->Iterations(20);
 BENCHMARK(BM_Open)->Apply(sizes)->Iterations(5);
 BENCHMARK(BM_Forget)->Apply(sizes)->Iterations(3);
+BENCHMARK(BM_LockedEnrol)->Apply(sizes)->Iterations(50);
 
 }  // namespace
 

@@ -40,8 +40,9 @@ struct SynthCommand {
                 out.c_str(), options.frames, options.scenario.c_str(), options.people,
                 static_cast<unsigned long long>(options.seed), static_cast<double>(bodies) / options.frames, ms);
     if (json) {
-      const nlohmann::json j = {{"frames", options.frames}, {"people", options.people}, {"seed", options.seed},
-                                {"scenario", options.scenario}, {"bodies", bodies}, {"render_ms_per_frame", ms}};
+      nlohmann::json j = {{"frames", options.frames}, {"people", options.people}, {"seed", options.seed},
+                          {"scenario", options.scenario}, {"bodies", bodies}, {"render_ms_per_frame", ms}};
+      if (options.looks_seed) j["looks_seed"] = *options.looks_seed;
       std::printf("%s\n", json_text(j).c_str());
     }
   }
@@ -55,6 +56,9 @@ void add(CLI::App& app) {
                   "Number of people (1-8; like a Kinect, at most 6 are tracked at once: a 7th in view gets no body "
                   "until a slot frees)");
   sub->add_option("--seed", command->options.seed, "Random seed: looks, paths and sensor noise");
+  sub->add_option("--looks-seed", command->options.looks_seed,
+                  "Seed of the people's looks (clothes, build, stature) instead of --seed: the same people on other "
+                  "paths, e.g. for a site's second sensor");
   CLI::Option* frames =
       sub->add_option("--frames", command->options.frames,
                       "Frames to render (30 per second; the scenario spans them all). Default 150; for visits "
@@ -67,11 +71,12 @@ void add(CLI::App& app) {
   sub->add_option("--out", command->out, "Recording directory to create (must not exist or be empty)")->required();
   sub->add_option("--color-width", command->options.color_width, "Colour image width");
   sub->add_option("--color-height", command->options.color_height, "Colour image height");
-  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people, seed, scenario, bodies, render_ms_per_frame)");
+  sub->add_flag("--json", command->json, "End stdout with one JSON object (frames, people, seed, looks_seed when given, scenario, bodies, render_ms_per_frame)");
   sub->add_flag("-q,--quiet", command->quiet, "No progress on stderr (drawn only when stderr is a terminal)");
   sub->footer(
       "Examples:\n  bodyrec synth --people 2 --seed 7 --frames 150 --scenario cross --out rec_synth\n"
-      "  bodyrec synth --people 8 --seed 1 --scenario visits --out rec_visits   # 800 frames");
+      "  bodyrec synth --people 8 --seed 1 --scenario visits --out rec_visits   # 800 frames\n"
+      "  bodyrec synth --people 8 --seed 2 --looks-seed 1 --scenario visits --out rec_b   # its people, other paths");
   sub->callback([command, frames] { command->run(frames->count() > 0); });
 }
 

@@ -41,6 +41,10 @@ class GalleryReidStore : public ReidStore {
   bool log(const ReidEvent& event, double time_s) override;
   bool refresh() override;
   bool has_user(UserId user) const override { return users_.count(user) > 0; }
+  // One gallery write transaction (Gallery::transaction: SQLite BEGIN IMMEDIATE, PostgreSQL the lock on
+  // gallery_state's row), so refresh() inside it sees every commit of other processes and none can come
+  // before it ends.
+  void exclusive(const std::function<void()>& body) override { gallery_.transaction(body); }
 
  private:
   GalleryTime time_of(double time_s) const;

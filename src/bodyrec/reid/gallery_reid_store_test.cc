@@ -7,6 +7,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/reid/online_reid.h"
+#include "bodyrec/reid/reid_sites_test_support.h"
 #include "bodyrec/reid/stripe_features.h"
 #include "reid_bodies.h"
 #include "test_support.h"
@@ -135,3 +136,10 @@ TEST(GalleryReidStore, AForgetFromAnotherConnectionDoesNotStopTheRunAndIsNotWrit
 
 }  // namespace
 }  // namespace bodyrec
+
+namespace bodyrec::store::testing {
+
+// The several-sensors suite (reid_sites_suite_test.cc) on SQLite files.
+INSTANTIATE_TEST_SUITE_P(Db, ReidSites, ::testing::Values(sql::Dialect::kSqlite), backend_name);
+
+}  // namespace bodyrec::store::testing

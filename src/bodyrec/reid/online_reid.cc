@@ -28,16 +28,6 @@ const char* reid_outcome_name(ReidOutcome outcome) {
   return "?";
 }
 
-const char* reid_event_name(ReidEventKind kind) {
-  switch (kind) {
-    case ReidEventKind::kEnrolled: return "enrolled";
-    case ReidEventKind::kRecognised: return "recognised";
-    case ReidEventKind::kViewAdded: return "view_added";
-    case ReidEventKind::kLeft: return "left";
-  }
-  return "?";
-}
-
 void OnlineReidOptions::check() const {
   const auto fail = [](const char* field, const char* problem) { throw OptionError("OnlineReidOptions", field, problem); };
   if (decide_after < 1) fail("decide_after", "must be at least 1");
@@ -231,6 +221,15 @@ ReidTrace::Scan OnlineReid::trace_scan(const Probe& probe, const std::vector<Sco
   return t;
 }
 
+bool OnlineReid::take_in_changes(ReidStep& out) {
+  if (!store_.refresh()) return false;
+  changed(std::nullopt);
+  // Users erased by another process: their bodies are decided afresh.
+  for (auto& [key, track] : tracks_)
+    if (track.user && !store_.has_user(*track.user)) drop_user(key, track, out);
+  return true;
+}
+
 void OnlineReid::drop_user(uint64_t key, Track& track, ReidStep& out) {
   if (options_.trace) out.trace.push_back({key, ReidOutcome::kUserErased, track.user, track.stature.estimate(), {}});
   track.user.reset();
@@ -258,7 +257,7 @@ void OnlineReid::enrol(uint64_t key, Track& track, ReidStep& out) {
     if (p != first) report({ReidEventKind::kViewAdded, user, key, v, std::nullopt}, out);
 }
 
-void OnlineReid::decide(uint64_t key, Track& track, ReidStep& out) {
+void OnlineReid::decide(uint64_t key, Track& track, ReidStep& out, bool locked) {
   // Users seen in another body while this one was in view (now or earlier) are someone else.
   std::vector<UserId> held = users_held_except(key);
   held.insert(held.end(), track.beside.begin(), track.beside.end());
@@ -348,7 +347,15 @@ void OnlineReid::decide(uint64_t key, Track& track, ReidStep& out) {
              track.frames >= 3 * options_.max_wait_frames) {
     // (Scans that all fall between "same" and "someone else" wait three times longer before enrolling:
     // that is more often a known person half hidden or turned than a new one.)
-    enrol(key, track, out);
+    if (locked) {
+      enrol(key, track, out);
+    } else {
+      // Decided on the gallery as of this step's refresh: with other writers kept out, take in what they
+      // wrote since and decide again when anything changed (another sensor may have enrolled this person).
+      bool again = false;
+      store_.exclusive([&] { (again = take_in_changes(out)) ? decide(key, track, out, true) : enrol(key, track, out); });
+      if (again) return;
+    }
     done(ReidOutcome::kEnrolled, track.user);
   } else {
     return done(ReidOutcome::kWaiting, std::nullopt);  // too close to call, or contradicting: collect more
@@ -443,12 +450,7 @@ ReidStep OnlineReid::step(double time_s, const std::vector<ReidBody>& bodies) {
   ++frame_;
   now_ = time_s;
   ReidStep out;
-  if (store_.refresh()) {
-    changed(std::nullopt);
-    // Users erased by another process: their bodies are decided afresh.
-    for (auto& [key, track] : tracks_)
-      if (track.user && !store_.has_user(*track.user)) drop_user(key, track, out);
-  }
+  take_in_changes(out);
   for (const ReidBody& b : bodies) {
     Track& t = tracks_[b.track];
     t.last_seen = time_s;

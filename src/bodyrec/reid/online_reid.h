@@ -31,6 +31,10 @@
 // A user who comes back gets a new track and is recognised again from the gallery.
 // A user erased meanwhile (another process's `gallery forget`, taken in by the store's refresh() at the next
 // step) is dropped: a body that was that user is decided afresh, and nothing of the user is written back.
+// Users and views other processes add are taken in the same way, at every step. An enrolment is final only
+// inside the store's exclusive() (one write transaction that keeps other writers out): there the track
+// takes in what others wrote since the step began and, when anything changed, is decided again, so two
+// sensors meeting the same new person at the same moment make one user and the later one recognises it.
 //
 // The decisions know nothing of storage: they read and write a ReidStore (reid_store.h), a persistent
 // gallery (GalleryReidStore) or memory (MemoryReidStore).
@@ -230,11 +234,15 @@ class OnlineReid {
   // The best probe per view among those with use[i].
   static std::map<View, const Probe*> best_per_view(const std::vector<Probe>& probes, const std::vector<bool>& use);
   std::optional<Probe> describe(const ReidBody& body) const;
-  void decide(uint64_t key, Track& track, ReidStep& out);
+  // `locked`: inside the store's exclusive(), with what others wrote taken in (an enrolment is then final).
+  void decide(uint64_t key, Track& track, ReidStep& out, bool locked = false);
   void enrol(uint64_t key, Track& track, ReidStep& out);
   void update(uint64_t key, Track& track, const ReidBody& body, ReidStep& out);
   std::vector<UserId> users_held_except(uint64_t key) const;
   void leave(uint64_t key, Track& track, ReidStep& out);
+  // Takes in what other writers changed (ReidStore::refresh): every cache is stale, and bodies whose user
+  // was erased are decided afresh. True when anything changed.
+  bool take_in_changes(ReidStep& out);
   // The track's user was erased: the body is decided afresh (from its next scans).
   void drop_user(uint64_t key, Track& track, ReidStep& out);
   bool comparable(const GalleryEntry& entry) const;  // made by this matcher in the current layout

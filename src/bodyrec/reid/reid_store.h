@@ -5,6 +5,7 @@
 // Times are the source's seconds (RgbdFrame::time_s); a store turns them into its own clock.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -28,6 +29,12 @@ class ReidStore : public GalleryCache {
   virtual bool refresh() = 0;
   // Whether the user exists in the cache (false once erased and refreshed).
   virtual bool has_user(UserId user) const = 0;
+  // Runs `body` with every other writer of the store kept out until it ends; its writes commit together
+  // (or none, when it throws). A refresh() inside it takes in everything others committed before, and
+  // nobody can add to that until it ends: an enrolment decided inside it is decided against every user
+  // there is (two sensors meeting one new person make one user). A store no other process writes (memory)
+  // just runs it.
+  virtual void exclusive(const std::function<void()>& body) { body(); }
 };
 
 }  // namespace bodyrec

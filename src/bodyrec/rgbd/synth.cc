@@ -282,13 +282,14 @@ Synthesizer::Synthesizer(const SynthOptions& options) : impl_(std::make_unique<I
   Impl& m = *impl_;
   m.options = options;
   m.meta.sensor = "bodyrec synth (" + options.scenario + ", " + std::to_string(options.people) + " people, seed " +
-                  std::to_string(options.seed) + ")";
+                  std::to_string(options.seed) +
+                  (options.looks_seed ? ", looks seed " + std::to_string(*options.looks_seed) : std::string()) + ")";
   m.meta.fps = 30;
   m.meta.depth = kinect2_depth_intrinsics();
   m.meta.color = scaled(kinect2_color_intrinsics(), options.color_width, options.color_height);
   m.meta.depth_to_color = kinect2_depth_to_color();
   m.meta.streams = {true, true, true, true, true};
-  for (int i = 0; i < options.people; ++i) m.looks.push_back(synth::make_look(options.seed, i, options.people));
+  for (int i = 0; i < options.people; ++i) m.looks.push_back(synth::make_look(options.looks_seed.value_or(options.seed), i, options.people));
   m.scripts = make_scripts(options);
   m.assign_slots();
   const cv::Vec3d t = m.meta.depth_to_color.translation;

@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,9 @@ constexpr int kMaxSynthPeople = 8;
 struct SynthOptions {
   int people = 2;                    // 1..kMaxSynthPeople (at most 6 tracked at once)
   uint64_t seed = 1;                 // everything random (looks, paths, noise) derives from it
+  // The people's looks (clothes, build, stature) from this seed instead: the same people on other paths
+  // (a site's second sensor). None: from `seed`.
+  std::optional<uint64_t> looks_seed;
   int frames = 150;                  // the scenario is stretched over this many frames
   std::string scenario = "walk-turn";  // walk-turn, cross, group, reenter, visits
   int color_width = 960, color_height = 540;  // depth is always Kinect v2's 512x424

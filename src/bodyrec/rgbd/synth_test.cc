@@ -128,6 +128,29 @@ TEST(Synth, PeopleOfOneRecordingLookDifferent) {
     for (size_t j = i + 1; j < 4; ++j) EXPECT_NE(f.truth->people[i].top_bgr, f.truth->people[j].top_bgr);
 }
 
+// --looks-seed: the same people (clothes, stature) on other paths.
+TEST(Synth, LooksSeedKeepsThePeopleAndChangesTheirPaths) {
+  SynthOptions a = options("visits", 3, 11, 450), b = options("visits", 3, 12, 450), c = b;
+  a.looks_seed = b.looks_seed = 40;
+  Synthesizer sa(a), sb(b), sc(c);
+  const RgbdFrame fa = sa.render(150), fb = sb.render(150), fc = sc.render(150);
+  ASSERT_EQ(fa.truth->people.size(), 3u);
+  bool moved = false, other_looks = false;
+  for (size_t i = 0; i < 3; ++i) {
+    const PersonTruth &pa = fa.truth->people[i], &pb = fb.truth->people[i], &pc = fc.truth->people[i];
+    EXPECT_EQ(pa.top, pb.top);
+    EXPECT_EQ(pa.bottom, pb.bottom);
+    EXPECT_EQ(pa.top_bgr, pb.top_bgr);
+    EXPECT_EQ(pa.accessories, pb.accessories);
+    EXPECT_DOUBLE_EQ(pa.height_m, pb.height_m);
+    moved = moved || cv::norm(pa.position - pb.position) > 0.05;
+    other_looks = other_looks || pc.top_bgr != pb.top_bgr || pc.height_m != pb.height_m;
+  }
+  EXPECT_TRUE(moved) << "another seed, the same paths";
+  EXPECT_TRUE(other_looks) << "without looks_seed, seed 12 gave seed 40's people";
+  EXPECT_NE(sa.meta().sensor.find("looks seed 40"), std::string::npos) << sa.meta().sensor;
+}
+
 // FNV-1a over the frame's images and the truth that drives tracking: a fingerprint of the output.
 uint64_t digest(const RgbdFrame& f) {
   uint64_t h = 1469598103934665603ULL;

@@ -139,6 +139,9 @@ class Gallery : public GalleryCache {
   // Reloads the cache when another connection changed scans (gallery_state.scan_changes; SQLite asks
   // only after PRAGMA data_version moved, no I/O when nothing changed; PostgreSQL: one query). Others'
   // events do not reload it. Returns true when it reloaded. Call it once per frame or per decision.
+  // Inside transaction() it takes in every commit of others, and none can follow until the transaction
+  // ends (the write lock is held from its start): what is decided there is decided against the whole
+  // gallery (reid/reid_store.h exclusive).
   bool refresh();
 
   std::optional<User> user(UserId id);
