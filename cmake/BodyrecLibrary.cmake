@@ -28,6 +28,7 @@ function(bodyrec_library area)
   install(TARGETS ${target} EXPORT bodyrecTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   file(GLOB headers CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.h)
+  list(FILTER headers EXCLUDE REGEX "_test_support\\.h$")  # tests' helpers are not the library's API
   install(FILES ${headers} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/bodyrec/${area})
   if(BODYREC_BUILD_TESTS)
     bodyrec_area_tests(${area})
