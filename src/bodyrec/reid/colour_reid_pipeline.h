@@ -28,6 +28,7 @@
 #include "bodyrec/reid/colour_ground.h"
 #include "bodyrec/reid/colour_scan.h"
 #include "bodyrec/reid/online_reid.h"
+#include "bodyrec/reid/track_segments.h"
 #include "bodyrec/reid/walking_view.h"
 #include "bodyrec/tracking/detect_and_track.h"
 
@@ -38,6 +39,8 @@ struct ColourReidOptions {
   WalkingViewOptions views;
   ColourScanOptions scans;
   OnlineReidOptions reid;
+  // Where a track's appearance turns into someone else's, the body gets a new key (track_segments.h).
+  TrackSegmentOptions segments;
   // The background model that cuts the bodies out (the default masks) when the detector has none of its own.
   ForegroundOptions foreground;
   void check() const;  // UsageError naming the field
@@ -51,6 +54,7 @@ struct ColourReidOptions {
 
 struct ColourBody {
   uint64_t track = 0;        // the tracker's id
+  uint64_t key = 0;          // re-identification key: the tracker's id, new where its appearance changed
   cv::Rect box;              // frame pixels (the tracker's box, rounded, clipped to the frame)
   bool detected = false;     // matched to a detection this frame (else carried by the tracker's prediction)
   ViewEstimate view;
@@ -80,6 +84,7 @@ class ColourReidPipeline {
   // Decides what can be decided and ends every track (`left`).
   std::vector<ReidEvent> finish() { return reid_.finish(); }
   const OnlineReid& decisions() const { return reid_; }
+  const TrackSegments& segments() const { return segments_; }
 
  private:
   PeopleDetector& detector_;
@@ -90,6 +95,7 @@ class ColourReidPipeline {
   std::unique_ptr<BodyMasker> own_masker_;
   BodyMasker* masker_;
   WalkingViewEstimator views_;
+  TrackSegments segments_;
   OnlineReid reid_;
 };
 
