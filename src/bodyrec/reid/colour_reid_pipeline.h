@@ -5,7 +5,9 @@
 // store (ReidStore) with the same events as the RGB-D pipeline (reid_pipeline.h).
 //
 // What is lost without depth: bodies come from a detector instead of the sensor's body index (people who
-// overlap merge into one foreground blob or are missed; tracks can swap while they cross), scans carry
+// overlap merge into one foreground blob or are missed; tracks can swap while they cross or jump to
+// someone else after a gap: such a track gets a new key where its appearance changes, and a new track
+// that clearly continues someone lost a moment ago takes over their key, track_segments.h), scans carry
 // whatever the mask lets through (a neighbour's pixels when boxes overlap: such scans lose quality), views
 // need people to walk (standing or turning on the spot gives none), the colour bands are spread over the
 // crop instead of placed by measured heights, and statures exist only with a calibrated camera
