@@ -80,7 +80,7 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
     std::vector<OrientedBody> bodies;
     for (const ColourBody& b : r.bodies) {
       OrientedBody o;
-      o.key = b.track;
+      o.key = b.key;
       o.view = b.view;
       o.face = b.face;
       bodies.push_back(o);

@@ -27,6 +27,7 @@ void ColourReidOptions::check() const {
   views.check();
   scans.check();
   reid.check();
+  segments.check();
   foreground.check();
 }
 
@@ -38,6 +39,7 @@ ColourReidPipeline::ColourReidPipeline(PeopleDetector& detector, ReidStore& stor
       tracking_(detector, options.tracking),
       masker_(masker),
       views_(options.views, ground),
+      segments_(matcher, options.segments),
       reid_(store, matcher, options.reid) {
   if (!masker_) {
     const auto* foreground = dynamic_cast<const ForegroundPeopleDetector*>(&detector_);
@@ -60,6 +62,7 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
 
   t0 = std::chrono::steady_clock::now();
   const cv::Size size = frame.image.size();
+  segments_.next_frame();
   for (const TrackedPerson& t : tracks) {
     if (t.id < 0) continue;
     ColourBody b;
@@ -80,10 +83,13 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
     b.view = views_.estimate(b.track, frame.time_s, b.box, frame.image);
     b.face = views_.last_face();
     ReidBody rb;
-    rb.track = b.track;
     rb.view = b.view;
     rb.box = b.box;
-    if (b.detected && reid_.wants_scan(b.track, b.view)) {
+    // Every detected body is scanned while segments watch its appearance; else only when the decisions
+    // want a scan of it (the key is then the track's current one).
+    std::optional<PartialScan> scan;
+    const bool watch = options_.segments.enabled;
+    if (b.detected && (watch || reid_.wants_scan(segments_.key(b.track, nullptr), b.view))) {
       const cv::Mat mask = masker_->mask(frame.image, b.box);
       if (ground_ && !mask.empty() && b.occluded < 0.05) {
         // Stature from the mask's top and bottom rows, when the body is whole in the frame.
@@ -97,7 +103,12 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
           }
         }
       }
-      rb.scan = colour_scan(frame.image, b.box, mask, b.view, b.occluded, b.stature_m, options_.scans);
+      scan = colour_scan(frame.image, b.box, mask, b.view, b.occluded, b.stature_m, options_.scans);
+    }
+    b.key = segments_.key(b.track, scan ? &*scan : nullptr);
+    rb.track = b.key;
+    if (scan && reid_.wants_scan(b.key, b.view)) {
+      rb.scan = std::move(scan);
       rb.stature_m = b.stature_m;
     }
     bodies.push_back(std::move(rb));

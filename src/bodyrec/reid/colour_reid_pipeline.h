@@ -5,7 +5,9 @@
 // store (ReidStore) with the same events as the RGB-D pipeline (reid_pipeline.h).
 //
 // What is lost without depth: bodies come from a detector instead of the sensor's body index (people who
-// overlap merge into one foreground blob or are missed; tracks can swap while they cross), scans carry
+// overlap merge into one foreground blob or are missed; tracks can swap while they cross or jump to
+// someone else after a gap: such a track gets a new key where its appearance changes, and a new track
+// that clearly continues someone lost a moment ago takes over their key, track_segments.h), scans carry
 // whatever the mask lets through (a neighbour's pixels when boxes overlap: such scans lose quality), views
 // need people to walk (standing or turning on the spot gives none), the colour bands are spread over the
 // crop instead of placed by measured heights, and statures exist only with a calibrated camera
@@ -28,6 +30,7 @@
 #include "bodyrec/reid/colour_ground.h"
 #include "bodyrec/reid/colour_scan.h"
 #include "bodyrec/reid/online_reid.h"
+#include "bodyrec/reid/track_segments.h"
 #include "bodyrec/reid/walking_view.h"
 #include "bodyrec/tracking/detect_and_track.h"
 
@@ -38,6 +41,8 @@ struct ColourReidOptions {
   WalkingViewOptions views;
   ColourScanOptions scans;
   OnlineReidOptions reid;
+  // Where a track's appearance turns into someone else's, the body gets a new key (track_segments.h).
+  TrackSegmentOptions segments;
   // The background model that cuts the bodies out (the default masks) when the detector has none of its own.
   ForegroundOptions foreground;
   void check() const;  // UsageError naming the field
@@ -51,6 +56,7 @@ struct ColourReidOptions {
 
 struct ColourBody {
   uint64_t track = 0;        // the tracker's id
+  uint64_t key = 0;          // re-identification key: the tracker's id, new where its appearance changed
   cv::Rect box;              // frame pixels (the tracker's box, rounded, clipped to the frame)
   bool detected = false;     // matched to a detection this frame (else carried by the tracker's prediction)
   ViewEstimate view;
@@ -80,6 +86,7 @@ class ColourReidPipeline {
   // Decides what can be decided and ends every track (`left`).
   std::vector<ReidEvent> finish() { return reid_.finish(); }
   const OnlineReid& decisions() const { return reid_; }
+  const TrackSegments& segments() const { return segments_; }
 
  private:
   PeopleDetector& detector_;
@@ -90,6 +97,7 @@ class ColourReidPipeline {
   std::unique_ptr<BodyMasker> own_masker_;
   BodyMasker* masker_;
   WalkingViewEstimator views_;
+  TrackSegments segments_;
   OnlineReid reid_;
 };
 

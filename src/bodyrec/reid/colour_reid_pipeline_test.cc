@@ -107,6 +107,51 @@ TEST(ColourReidPipeline, AReturningWalkerIsRecognisedAndANewOneEnrolled) {
   EXPECT_EQ(decisions[2].user, decisions[0].user);
 }
 
+// One walk whose body changes clothes half-way: what a tracker that jumped to someone else gives.
+std::vector<Frame> swapped_walk() {
+  std::vector<Frame> frames = walks({});
+  for (int i = 0; i < 70; ++i) {
+    const bool red = i < 35;
+    Frame f;
+    f.image = scene({20 + 7 * i, 150, 50, 160}, red ? cv::Scalar(30, 30, 210) : cv::Scalar(40, 190, 40),
+                    red ? cv::Scalar(150, 40, 30) : cv::Scalar(30, 200, 220));
+    f.index = static_cast<int>(frames.size());
+    f.time_s = f.index / 25.0;
+    f.name = "swap";
+    frames.push_back(f);
+  }
+  return frames;
+}
+
+TEST(ColourReidPipeline, ATrackThatTurnsIntoSomeoneElseGetsANewKeyAndUser) {
+  for (const bool enabled : {true, false}) {
+    ForegroundPeopleDetector people;
+    MemoryReidStore store;
+    auto matcher = make_matcher("stripes");
+    ColourReidOptions o = quiet_options();
+    o.segments.enabled = enabled;
+    ColourReidPipeline reid(people, store, *matcher, o);
+    std::set<uint64_t> tracks, keys;
+    std::set<UserId> enrolled;
+    for (const Frame& f : swapped_walk()) {
+      const ColourReidResult r = reid.process(f);
+      for (const ColourBody& b : r.bodies) tracks.insert(b.track), keys.insert(b.key);
+      for (const ReidEvent& e : r.step.events)
+        if (e.kind == ReidEventKind::kEnrolled) enrolled.insert(e.user);
+    }
+    SCOPED_TRACE(enabled);
+    ASSERT_EQ(tracks.size(), 1u);  // the tracker keeps one id throughout
+    if (enabled) {
+      EXPECT_EQ(reid.segments().cuts(), 1);
+      EXPECT_EQ(keys, (std::set<uint64_t>{*tracks.begin(), *tracks.begin() + (1ull << 32)}));
+      EXPECT_EQ(enrolled.size(), 2u);
+    } else {
+      EXPECT_EQ(keys, tracks);
+      EXPECT_EQ(reid.segments().cuts(), 0);
+    }
+  }
+}
+
 TEST(ColourReidPipeline, BadOptionsAndFramesAreRefused) {
   ForegroundPeopleDetector people;
   MemoryReidStore store;
