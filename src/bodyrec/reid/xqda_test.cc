@@ -178,6 +178,7 @@ TEST(Xqda, PublishedSolverFollowsTheAuthorsSteps) {
   const cv::SVD svd(cv::Mat(in_cov.inv() * ex_cov), cv::SVD::FULL_UV);
   int k = 0;
   while (k < d && svd.w.at<double>(k) > 1.0) ++k;
+  ASSERT_GT(k, 0);
   const cv::Mat w = svd.vt.rowRange(0, k).t();
   const cv::Mat m = cv::Mat(w.t() * in_cov * w).inv() - cv::Mat(w.t() * ex_cov * w).inv();
 
