@@ -45,7 +45,8 @@ cv::Mat eigen_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra, con
   return b;
 }
 
-// XQDA.m: right singular vectors V of cov_intra^-1 cov_extra with singular value > 1 (at least one),
+// XQDA.m: `[V, S] = svd(inCov \ exCov)`, where MATLAB's two-output svd returns the LEFT singular
+// vectors: V = left singular vectors of cov_intra^-1 cov_extra with singular value > 1 (at least one),
 // M = (V^T Si V)^-1 - (V^T Se V)^-1; the embedding is V Q diag(sqrt(mu)) over M's eigenpairs (Q, mu)
 // with mu > 0.
 cv::Mat published_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra, const XqdaOptions& options,
@@ -58,7 +59,7 @@ cv::Mat published_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra,
   while (k < r && svd.w.at<double>(k) > 1.0) ++k;
   k = std::max(k, 1);
   if (options.max_dims > 0) k = std::min(k, options.max_dims);
-  const cv::Mat v = svd.vt.rowRange(0, k).t();
+  const cv::Mat v = svd.u.colRange(0, k).clone();
   cv::Mat m = (v.t() * cov_intra * v).inv(cv::DECOMP_CHOLESKY) - (v.t() * cov_extra * v).inv(cv::DECOMP_CHOLESKY);
   m = 0.5 * (m + m.t());
   cv::Mat mu, q;

@@ -155,7 +155,8 @@ TEST(Xqda, BothSolversKeepTheSeparatingDirectionOfAToyProblem) {
 }
 
 // The published solver against XQDA.m's steps done directly in feature space (pairs enumerated, the
-// covariances formed, svd(inCov \ exCov), M = inv(W'inCov W) - inv(W'exCov W)): the same distances.
+// covariances formed, [W, S] = svd(inCov \ exCov) (W: the left singular vectors), M = inv(W'inCov W) -
+// inv(W'exCov W)): the same distances.
 TEST(Xqda, PublishedSolverFollowsTheAuthorsSteps) {
   Layout small;
   small.dims = 6, small.signals = 2, small.noise = 0.5, small.camera_noise = 0.3;
@@ -179,7 +180,7 @@ TEST(Xqda, PublishedSolverFollowsTheAuthorsSteps) {
   int k = 0;
   while (k < d && svd.w.at<double>(k) > 1.0) ++k;
   ASSERT_GT(k, 0);
-  const cv::Mat w = svd.vt.rowRange(0, k).t();
+  const cv::Mat w = svd.u.colRange(0, k).clone();
   const cv::Mat m = cv::Mat(w.t() * in_cov * w).inv() - cv::Mat(w.t() * ex_cov * w).inv();
 
   XqdaOptions options;
