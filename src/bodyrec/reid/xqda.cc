@@ -60,7 +60,8 @@ cv::Mat published_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra,
   k = std::max(k, 1);
   if (options.max_dims > 0) k = std::min(k, options.max_dims);
   const cv::Mat v = svd.u.colRange(0, k).clone();
-  cv::Mat m = (v.t() * cov_intra * v).inv(cv::DECOMP_CHOLESKY) - (v.t() * cov_extra * v).inv(cv::DECOMP_CHOLESKY);
+  // Si is regularised (positive definite); Se may be singular in a small training set: pseudo-inverse.
+  cv::Mat m = (v.t() * cov_intra * v).inv(cv::DECOMP_CHOLESKY) - (v.t() * cov_extra * v).inv(cv::DECOMP_SVD);
   m = 0.5 * (m + m.t());
   cv::Mat mu, q;
   symmetric_eigen(m, mu, q);

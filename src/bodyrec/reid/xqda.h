@@ -21,9 +21,9 @@ namespace bodyrec {
 //      derivation), M = I - diag(1 / eigenvalue) in the basis where W^T Si W = I.
 //  kPublishedSvd: as the authors' released XQDA.m computes it: W = left singular vectors of Si^-1 Se
 //      (its `[V, S] = svd(...)` returns U) with singular value > 1 (orthonormal, at least one),
-//      M = (W^T Si W)^-1 - (W^T Se W)^-1. M is
-//      not always positive semi-definite; its negative eigenvalues are dropped (counted in
-//      XqdaFit::negative_dims) so the distance stays a squared Euclidean one.
+//      M = (W^T Si W)^-1 - (W^T Se W)^-1. M is not always positive semi-definite; its negative
+//      eigenvalues are dropped (counted in XqdaFit::negative_dims) so the distance stays a squared
+//      Euclidean one.
 enum class XqdaSolver { kGeneralisedEigen, kPublishedSvd };
 
 struct XqdaOptions {
