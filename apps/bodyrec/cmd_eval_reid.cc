@@ -1,6 +1,9 @@
 // `bodyrec eval reid`: CMC and mAP of an appearance matcher on a two-camera re-identification set
 // (VIPeR protocol: random splits into training and test identities).
 #include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -55,8 +58,17 @@ struct EvalReidCommand {
     std::printf("threshold     accepts %.1f %% of same-person pairs, rejects %.1f %% of different-person pairs\n",
                 100 * r.same_accepted, 100 * r.different_rejected);
     std::printf("ms per image  %.2f (features + descriptor + matching, training excluded)\n", r.ms_per_image);
+    const OpenSetScores& o = r.open_set;
+    if (eval.open_set) {
+      std::printf("open set      %d enrolled probes, %d strangers per split; DIR at FAR 1 %% %.3f, at FAR 10 %% %.3f; "
+                  "rank-1 among the enrolled %.2f %%\n",
+                  o.enrolled, o.strangers, o.dir_far1, o.dir_far10, 100 * o.rank1_closed);
+      std::printf("open set      at the matcher's threshold: DIR %.3f, strangers accepted %.1f %%, enrolled "
+                  "people rejected %.1f %%\n",
+                  o.dir_at_threshold, 100 * o.far_at_threshold, 100 * o.missed_at_threshold);
+    }
     if (json) {
-      const nlohmann::json j = {{"rank1", r.rank1},
+      nlohmann::json j = {{"rank1", r.rank1},
                                 {"rank5", r.rank5},
                                 {"rank10", r.rank10},
                                 {"rank20", r.rank20},
@@ -68,6 +80,26 @@ struct EvalReidCommand {
                                 {"different_rejected", r.different_rejected},
                                 {"rank1_per_split", r.rank1_per_split},
                                 {"map_per_split", r.map_per_split}};
+      if (eval.open_set) {
+        const auto per_split = [&](double OpenSetScores::*field) {
+          std::vector<double> v;
+          for (const auto& split : r.open_set_per_split) v.push_back(split.*field);
+          return v;
+        };
+        const std::pair<const char*, double OpenSetScores::*> fields[] = {
+            {"dir_far1", &OpenSetScores::dir_far1},
+            {"dir_far10", &OpenSetScores::dir_far10},
+            {"dir_at_threshold", &OpenSetScores::dir_at_threshold},
+            {"far_at_threshold", &OpenSetScores::far_at_threshold},
+            {"missed_at_threshold", &OpenSetScores::missed_at_threshold},
+            {"rank1_closed", &OpenSetScores::rank1_closed}};
+        for (const auto& [key, field] : fields) {
+          j[key] = o.*field;
+          j[std::string(key) + "_per_split"] = per_split(field);
+        }
+        j["enrolled_probes"] = o.enrolled;
+        j["stranger_probes"] = o.strangers;
+      }
       std::printf("%s\n", json_text(j).c_str());
     }
   }
@@ -101,10 +133,18 @@ void add(CLI::App& eval) {
   sub->add_option("--resize", command->resize,
                   "Resample every image to WxH before anything else (e.g. 128x256): how sizes other than the "
                   "data set's affect the matcher");
+  sub->add_flag("--open-set", command->eval.open_set,
+                "Also score open-set identification: per split a random half of the test identities is enrolled "
+                "(gallery: their other-camera images and people the probe camera never sees; probes: every "
+                "test identity). Prints DIR at FAR 1 % and 10 % (enrolled probes named right and accepted at "
+                "the threshold that accepts that share of strangers), the rates at the matcher's own "
+                "threshold, and rank-1 among the enrolled");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (rank1, rank5, rank10, rank20, map, probes, gallery, ms_per_image, "
                 "same_accepted, different_rejected: shares of the test's same-person pairs accepted and "
-                "different-person pairs rejected at the matcher's threshold)");
+                "different-person pairs rejected at the matcher's threshold; with --open-set also dir_far1, dir_far10, "
+                "dir_at_threshold, far_at_threshold, missed_at_threshold, rank1_closed, each with a _per_split "
+                "array, enrolled_probes, stranger_probes)");
   sub->callback([command] { command->run(); });
 }
 

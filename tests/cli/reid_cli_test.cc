@@ -111,6 +111,37 @@ TEST(EvalReidCli, SwapCamerasTakesProbesFromTheSecondCamera) {
   EXPECT_EQ(j["map_per_split"].size(), 3u);
 }
 
+// --open-set: of the 6 test people half are enrolled; the gallery holds their camera-2 images and the
+// distractor p10, the probes are all 6 (3 enrolled, 3 strangers).
+TEST(EvalReidCli, OpenSetEnrolsHalfTheTestPeople) {
+  const RunResult r = run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "4", "--splits", "3", "--open-set"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["enrolled_probes"].get<int>(), 3);
+  EXPECT_EQ(j["stranger_probes"].get<int>(), 3);
+  EXPECT_DOUBLE_EQ(j["rank1_closed"].get<double>(), 1.0);
+  for (const char* key : {"dir_far1", "dir_far10", "dir_at_threshold", "far_at_threshold", "missed_at_threshold"}) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    EXPECT_GE(j[key].get<double>(), 0.0) << key;
+    EXPECT_LE(j[key].get<double>(), 1.0) << key;
+    EXPECT_EQ(j[std::string(key) + "_per_split"].size(), 3u) << key;
+  }
+  // With 3 strangers FAR 1 % and 10 % both accept none: the same threshold.
+  EXPECT_DOUBLE_EQ(j["dir_far1"].get<double>(), j["dir_far10"].get<double>());
+  EXPECT_TRUE(contains(r.out, "open set")) << r.out;
+  // The closed-set figures are unchanged by the flag.
+  const auto closed = last_json_line(run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "4", "--splits", "3"})).out);
+  EXPECT_EQ(j["rank1_per_split"], closed["rank1_per_split"]);
+  EXPECT_FALSE(closed.contains("dir_far1"));
+  // Probes from camera 2: the first camera has no distractor, the gallery only the enrolled.
+  const auto swapped = last_json_line(
+      run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "4", "--splits", "2", "--open-set", "--swap-cameras"})).out);
+  EXPECT_EQ(swapped["enrolled_probes"].get<int>(), 3);
+  EXPECT_EQ(swapped["stranger_probes"].get<int>(), 3);
+  // One test person cannot be split into enrolled people and strangers.
+  expect_one_line_error(run_bodyrec(eval_args({"--matcher", "lomo", "--train-ids", "9", "--open-set"})), 2, "--open-set");
+}
+
 // --resize resamples every image first: to the size the images have, nothing changes; to another size
 // the figures are measured on the resampled images.
 TEST(EvalReidCli, ResizeResamplesEveryImageFirst) {

@@ -116,7 +116,9 @@ class LomoGogMatcher : public AppearanceMatcher {
   void train(const std::vector<TrainingSample>& samples) override {
     if (kind_ == LearnedMatcherKind::kUnlearned) return;
     if (kind_ == LearnedMatcherKind::kPublished) {
-      model_ = train_xqda_ensemble(samples, 1);
+      XqdaOptions options;
+      options.solver = XqdaSolver::kPublishedSvd;
+      model_ = train_xqda_ensemble(samples, 1, options);
       model_.features = kPublishedFeatures;
       model_.variant = kPublishedVariant;
       return;

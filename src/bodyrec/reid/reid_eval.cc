@@ -1,7 +1,9 @@
 #include "bodyrec/reid/reid_eval.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <set>
 #include <string_view>
 #include <utility>
 
@@ -17,6 +19,33 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+// The open-set scores of one split (ReidEvalOptions::open_set) from its closed-set similarity matrix
+// (every split probe against every split gallery image).
+OpenSetScores open_set_split(const ReidDataset& data, const ReidSplit& split, const cv::Mat& similarity,
+                             const std::vector<int>& probe_ids, double threshold, uint32_t seed, int index) {
+  std::vector<int> test_ids = probe_ids;
+  std::sort(test_ids.begin(), test_ids.end());
+  test_ids.erase(std::unique(test_ids.begin(), test_ids.end()), test_ids.end());
+  if (test_ids.size() < 2)
+    throw UsageError("--open-set needs at least two test identities per split (split " + std::to_string(index) +
+                     " has " + std::to_string(test_ids.size()) + "): lower --train-ids");
+  const std::vector<int> enrolled = enrolled_identities(test_ids, seed, index);
+  const std::set<int> enrolled_set(enrolled.begin(), enrolled.end());
+  std::vector<char> probe_camera_sees(data.identities.size(), 0);
+  for (const auto& image : data.images)
+    if (image.camera == 0) probe_camera_sees[static_cast<size_t>(image.identity)] = 1;
+  std::vector<int> columns, gallery_ids;
+  for (size_t g = 0; g < split.gallery.size(); ++g) {
+    const int id = data.images[static_cast<size_t>(split.gallery[g])].identity;
+    if (enrolled_set.count(id) || !probe_camera_sees[static_cast<size_t>(id)])
+      columns.push_back(static_cast<int>(g)), gallery_ids.push_back(id);
+  }
+  cv::Mat open(similarity.rows, static_cast<int>(columns.size()), CV_64F);
+  for (int p = 0; p < similarity.rows; ++p)
+    for (int c = 0; c < open.cols; ++c) open.at<double>(p, c) = similarity.at<double>(p, columns[static_cast<size_t>(c)]);
+  return open_set_scores(open, probe_ids, gallery_ids, threshold);
+}
 
 }  // namespace
 
@@ -69,6 +98,10 @@ ReidEvalResult evaluate_reid(const ReidDataset& given, const MatcherFactory& mak
   const ReidDataset data = options.swap_cameras ? with_cameras_swapped(given) : given;
   ReidEvalResult result;
   result.train_ids = options.train_ids >= 0 ? options.train_ids : static_cast<int>(data.in_both.size()) / 2;
+  const int test_ids = static_cast<int>(data.in_both.size()) - result.train_ids;
+  if (options.open_set && test_ids < 2)
+    throw UsageError("--open-set needs at least two test identities per split (" + std::to_string(test_ids) +
+                     " left after " + std::to_string(result.train_ids) + " for training)");
   // Features do not depend on the split: compute them once per image.
   double feature_ms_per_image = 0;
   const std::vector<std::vector<float>> features = dataset_features(data, *make(), &feature_ms_per_image, options.resize);
@@ -109,6 +142,15 @@ ReidEvalResult evaluate_reid(const ReidDataset& given, const MatcherFactory& mak
     result.map += scores.map;
     result.rank1_per_split.push_back(scores.cmc[0]);
     result.map_per_split.push_back(scores.map);
+    if (options.open_set) {
+      const OpenSetScores o = open_set_split(data, split, similarity, probe_ids, matcher->threshold(), options.seed, s);
+      result.open_set_per_split.push_back(o);
+      OpenSetScores& m = result.open_set;
+      m.dir_far1 += o.dir_far1, m.dir_far10 += o.dir_far10, m.rank1_closed += o.rank1_closed;
+      m.dir_at_threshold += o.dir_at_threshold, m.far_at_threshold += o.far_at_threshold;
+      m.missed_at_threshold += o.missed_at_threshold;
+      m.enrolled = o.enrolled, m.strangers = o.strangers;
+    }
     result.probes = static_cast<int>(split.probes.size());
     result.gallery = static_cast<int>(split.gallery.size());
     result.matcher = matcher->summary();
@@ -117,6 +159,9 @@ ReidEvalResult evaluate_reid(const ReidDataset& given, const MatcherFactory& mak
   const double n = options.splits;
   result.rank1 /= n, result.rank5 /= n, result.rank10 /= n, result.rank20 /= n, result.map /= n;
   result.same_accepted /= n, result.different_rejected /= n;
+  OpenSetScores& m = result.open_set;
+  m.dir_far1 /= n, m.dir_far10 /= n, m.rank1_closed /= n;
+  m.dir_at_threshold /= n, m.far_at_threshold /= n, m.missed_at_threshold /= n;
   result.ms_per_image = feature_ms_per_image + match_ms_per_image / n;
   return result;
 }

@@ -11,6 +11,7 @@
 #include <opencv2/core/types.hpp>
 
 #include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/open_set.h"
 #include "bodyrec/reid/reid_split.h"
 
 namespace bodyrec {
@@ -22,6 +23,10 @@ struct ReidEvalOptions {
   bool learn = true;  // false: use each matcher as made (e.g. with a given model), never train it
   bool swap_cameras = false;  // probes from the second camera, gallery from the first
   cv::Size resize;            // every image resampled to this size first (resample.h); empty: as read
+  // Also score open-set identification (open_set.h): per split a random half of the test identities
+  // (enrolled_identities) is enrolled; the gallery is their other-camera images plus the images of
+  // people the probe camera never sees; the probes are every test identity's probe-camera images.
+  bool open_set = false;
   void check() const;  // throws UsageError
 };
 
@@ -39,6 +44,10 @@ struct ReidEvalResult {
   double ms_per_image = 0;  // features + descriptor + matching per test image, training excluded
   std::string matcher;      // summary() of the last split's matcher
   std::vector<std::string> matcher_per_split;  // summary() of each split's matcher (what it learned)
+  // With options.open_set (the threshold figures at the matcher's threshold()): means over splits, and
+  // each split's scores.
+  OpenSetScores open_set;
+  std::vector<OpenSetScores> open_set_per_split;
 };
 
 // Makes a fresh matcher for each split (so nothing learned leaks from one split into the next).
@@ -53,7 +62,8 @@ std::vector<std::vector<float>> dataset_features(const ReidDataset& data, const 
 // The same images with the cameras' roles exchanged (the second camera's images become probes).
 ReidDataset with_cameras_swapped(ReidDataset data);
 
-// Throws InputError naming the image that cannot be read.
+// Throws InputError naming the image that cannot be read; UsageError when open_set is asked for and a
+// split has fewer than two test identities.
 ReidEvalResult evaluate_reid(const ReidDataset& data, const MatcherFactory& make, const ReidEvalOptions& options);
 
 }  // namespace bodyrec

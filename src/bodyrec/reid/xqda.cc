@@ -20,6 +20,61 @@ void symmetric_eigen(const cv::Mat& m, cv::Mat& values, cv::Mat& vectors) {
   vectors = rows.t();
 }
 
+// Generalised eigenproblem cov_extra w = lambda cov_intra w, by whitening cov_intra; each kept direction
+// scaled by sqrt(1 - 1/lambda): M = I - diag(1/lambda) in the whitened basis.
+cv::Mat eigen_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra, const XqdaOptions& options, XqdaFit& fit) {
+  const int r = cov_intra.rows;
+  cv::Mat di, vi;
+  symmetric_eigen(cov_intra, di, vi);
+  cv::Mat whiten(r, r, CV_64F);
+  for (int j = 0; j < r; ++j) {
+    cv::Mat col = whiten.col(j);
+    col = vi.col(j) / std::sqrt(std::max(di.at<double>(j), 1e-12));
+  }
+  cv::Mat c = whiten.t() * cov_extra * whiten;
+  c = 0.5 * (c + c.t());
+  cv::Mat lambda, v;
+  symmetric_eigen(c, lambda, v);
+  int k = 0;
+  while (k < r && lambda.at<double>(k) > 1.0) ++k;
+  if (options.max_dims > 0) k = std::min(k, options.max_dims);
+  if (k == 0) throw ProcessingError("XQDA: no direction separates different people better than the same person");
+  cv::Mat b = whiten * v.colRange(0, k);
+  for (int j = 0; j < k; ++j) b.col(j) *= std::sqrt(1.0 - 1.0 / lambda.at<double>(j));
+  fit.dims = k;
+  return b;
+}
+
+// XQDA.m: `[V, S] = svd(inCov \ exCov)`, where MATLAB's two-output svd returns the LEFT singular
+// vectors: V = left singular vectors of cov_intra^-1 cov_extra with singular value > 1 (at least one),
+// M = (V^T Si V)^-1 - (V^T Se V)^-1; the embedding is V Q diag(sqrt(mu)) over M's eigenpairs (Q, mu)
+// with mu > 0.
+cv::Mat published_directions(const cv::Mat& cov_intra, const cv::Mat& cov_extra, const XqdaOptions& options,
+                             XqdaFit& fit) {
+  const int r = cov_intra.rows;
+  cv::Mat a;
+  cv::solve(cov_intra, cov_extra, a, cv::DECOMP_CHOLESKY);
+  const cv::SVD svd(a, cv::SVD::FULL_UV);  // singular values descending
+  int k = 0;
+  while (k < r && svd.w.at<double>(k) > 1.0) ++k;
+  k = std::max(k, 1);
+  if (options.max_dims > 0) k = std::min(k, options.max_dims);
+  const cv::Mat v = svd.u.colRange(0, k).clone();
+  // Si is regularised (positive definite); Se may be singular in a small training set: pseudo-inverse.
+  cv::Mat m = (v.t() * cov_intra * v).inv(cv::DECOMP_CHOLESKY) - (v.t() * cov_extra * v).inv(cv::DECOMP_SVD);
+  m = 0.5 * (m + m.t());
+  cv::Mat mu, q;
+  symmetric_eigen(m, mu, q);
+  int positive = 0;
+  while (positive < k && mu.at<double>(positive) > 0) ++positive;
+  fit.dims = k;
+  fit.negative_dims = k - positive;
+  if (positive == 0) throw ProcessingError("XQDA: the learned metric has no positive direction");
+  cv::Mat b = v * q.colRange(0, positive);
+  for (int j = 0; j < positive; ++j) b.col(j) *= std::sqrt(mu.at<double>(j));
+  return b;
+}
+
 }  // namespace
 
 namespace xqda_detail {
@@ -176,29 +231,14 @@ XqdaFit fit_xqda(const cv::Mat& gram, const std::vector<XqdaLabel>& labels, cons
   const cv::Mat sum_all = nz * xtx + nx * ztz - sums[0].t() * sums[1] - sums[1].t() * sums[0];
   const double n_extra = nx * nz - n_intra;
   if (n_extra < 1) throw ProcessingError("XQDA: training needs at least two identities");
+  XqdaFit fit;
   cv::Mat cov_intra = sum_intra / n_intra;
   cv::Mat cov_extra = (sum_all - sum_intra) / n_extra;
   cov_intra += cv::Mat::eye(r, r, CV_64F) * options.regulariser;
 
-  // 3. Generalised eigenproblem cov_extra w = lambda cov_intra w, by whitening cov_intra.
-  cv::Mat di, vi;
-  symmetric_eigen(cov_intra, di, vi);
-  cv::Mat whiten(r, r, CV_64F);
-  for (int j = 0; j < r; ++j) {
-    cv::Mat col = whiten.col(j);
-    col = vi.col(j) / std::sqrt(std::max(di.at<double>(j), 1e-12));
-  }
-  cv::Mat c = whiten.t() * cov_extra * whiten;
-  c = 0.5 * (c + c.t());
-  cv::Mat lambda, v;
-  symmetric_eigen(c, lambda, v);
-  int k = 0;
-  while (k < r && lambda.at<double>(k) > 1.0) ++k;
-  if (options.max_dims > 0) k = std::min(k, options.max_dims);
-  if (k == 0) throw ProcessingError("XQDA: no direction separates different people better than the same person");
-  // Scale each direction by sqrt(1 - 1/lambda): M = I - diag(1/lambda) in the whitened basis.
-  cv::Mat b = whiten * v.colRange(0, k);
-  for (int j = 0; j < k; ++j) b.col(j) *= std::sqrt(1.0 - 1.0 / lambda.at<double>(j));
+  // 3. The subspace and the metric in it (XqdaSolver), folded into one projection B.
+  cv::Mat b = options.solver == XqdaSolver::kPublishedSvd ? published_directions(cov_intra, cov_extra, options, fit)
+                                                             : eigen_directions(cov_intra, cov_extra, options, fit);
 
   // 4. Back to the samples: embedding of x = B^T S^(-1/2) U^T (A x).
   cv::Mat u_scaled(n, r, CV_64F);
@@ -206,7 +246,6 @@ XqdaFit fit_xqda(const cv::Mat& gram, const std::vector<XqdaLabel>& labels, cons
     cv::Mat col = u_scaled.col(j);
     col = u.col(j) / std::sqrt(s.at<double>(j));
   }
-  XqdaFit fit;
   fit.coefficients = u_scaled * b;
   fit.embedded = y * b;
 

@@ -15,9 +15,21 @@
 
 namespace bodyrec {
 
+// How the subspace and metric are solved for, with Si the (regularised) same-person and Se the
+// different-person covariance:
+//  kGeneralisedEigen: W = generalised eigenvectors of (Se, Si) with eigenvalue > 1 (the paper's
+//      derivation), M = I - diag(1 / eigenvalue) in the basis where W^T Si W = I.
+//  kPublishedSvd: as the authors' released XQDA.m computes it: W = left singular vectors of Si^-1 Se
+//      (its `[V, S] = svd(...)` returns U) with singular value > 1 (orthonormal, at least one),
+//      M = (W^T Si W)^-1 - (W^T Se W)^-1. M is not always positive semi-definite; its negative
+//      eigenvalues are dropped (counted in XqdaFit::negative_dims) so the distance stays a squared
+//      Euclidean one.
+enum class XqdaSolver { kGeneralisedEigen, kPublishedSvd };
+
 struct XqdaOptions {
   double regulariser = 1e-3;  // added to the diagonal of the same-person covariance (the published value)
-  int max_dims = 0;           // keep at most this many directions (0 = every one with eigenvalue > 1)
+  int max_dims = 0;           // keep at most this many directions (0 = every one with eigen/singular value > 1)
+  XqdaSolver solver = XqdaSolver::kGeneralisedEigen;
   void check() const;
 };
 
@@ -52,6 +64,8 @@ struct XqdaFit {
   cv::Mat coefficients;  // CV_64F n x k: embedding of x = coefficients^T (inner products of x with the samples)
   cv::Mat embedded;      // CV_64F n x k: the training samples' embeddings
   double threshold = 0;  // balanced-error squared distance over the training cross-camera pairs
+  int dims = 0;           // directions kept by the solver (before negative ones are dropped)
+  int negative_dims = 0;  // kPublishedSvd: eigenvalues of M below 0, dropped
 };
 
 // REQUIRES gram CV_64F n x n symmetric, labels.size() == n, samples from both cameras, at least two

@@ -138,6 +138,76 @@ TEST(Xqda, KernelFormGivesTheSameEmbedding) {
   }
 }
 
+// Two people in the plane: the same person differs only along y, different people only along x. Both
+// solvers keep x alone, with M = 1/lambda - 1/4 there: x0 = (0, 0) and z1 = (2, 0) are 4 (1000 - 0.25)
+// apart.
+TEST(Xqda, BothSolversKeepTheSeparatingDirectionOfAToyProblem) {
+  const std::vector<std::vector<float>> f = {{0, 0}, {0, 1}, {2, 1}, {2, 0}};
+  const std::vector<XqdaSample> samples = {{&f[0], 0, 0}, {&f[1], 0, 1}, {&f[2], 1, 0}, {&f[3], 1, 1}};
+  for (XqdaSolver solver : {XqdaSolver::kGeneralisedEigen, XqdaSolver::kPublishedSvd}) {
+    XqdaOptions options;
+    options.solver = solver;
+    const XqdaModel model = train_xqda(samples, options);
+    ASSERT_EQ(model.projection.cols, 1);
+    EXPECT_NEAR(squared_distance(model.embed(f[0]), model.embed(f[3])), 4 * 999.75, 0.05);
+    EXPECT_NEAR(squared_distance(model.embed(f[0]), model.embed(f[1])), 0.0, 1e-6);
+  }
+}
+
+// The published solver against XQDA.m's steps done directly in feature space (pairs enumerated, the
+// covariances formed, [W, S] = svd(inCov \ exCov) (W: the left singular vectors), M = inv(W'inCov W) -
+// inv(W'exCov W)): the same distances.
+TEST(Xqda, PublishedSolverFollowsTheAuthorsSteps) {
+  Layout small;
+  small.dims = 6, small.signals = 2, small.noise = 0.5, small.camera_noise = 0.3;
+  const Synthetic training = make_data(12, 21, small), test = make_data(4, 22, small);
+  const int d = small.dims;
+  cv::Mat in_cov = cv::Mat::zeros(d, d, CV_64F), ex_cov = cv::Mat::zeros(d, d, CV_64F);
+  int n_in = 0, n_ex = 0;
+  for (size_t i = 0; i < training.features.size(); ++i)
+    for (size_t j = 0; j < training.features.size(); ++j) {
+      if (training.cams[i] != 0 || training.cams[j] != 1) continue;
+      cv::Mat x(d, 1, CV_32F, const_cast<float*>(training.features[i].data()));
+      cv::Mat z(d, 1, CV_32F, const_cast<float*>(training.features[j].data()));
+      cv::Mat diff;
+      cv::Mat(x - z).convertTo(diff, CV_64F);
+      if (training.ids[i] == training.ids[j]) in_cov += diff * diff.t(), ++n_in;
+      else ex_cov += diff * diff.t(), ++n_ex;
+    }
+  in_cov = in_cov / n_in + cv::Mat::eye(d, d, CV_64F) * 1e-3;
+  ex_cov = ex_cov / n_ex;
+  const cv::SVD svd(cv::Mat(in_cov.inv() * ex_cov), cv::SVD::FULL_UV);
+  int k = 0;
+  while (k < d && svd.w.at<double>(k) > 1.0) ++k;
+  ASSERT_GT(k, 0);
+  const cv::Mat w = svd.u.colRange(0, k).clone();
+  const cv::Mat m = cv::Mat(w.t() * in_cov * w).inv() - cv::Mat(w.t() * ex_cov * w).inv();
+
+  XqdaOptions options;
+  options.solver = XqdaSolver::kPublishedSvd;
+  cv::Mat a(static_cast<int>(training.features.size()), d, CV_32F);
+  std::vector<XqdaLabel> labels;
+  for (size_t i = 0; i < training.features.size(); ++i) {
+    std::copy(training.features[i].begin(), training.features[i].end(), a.ptr<float>(static_cast<int>(i)));
+    labels.push_back({training.ids[i], training.cams[i]});
+  }
+  const XqdaFit fit = fit_xqda(gram_matrix(a), labels, options);
+  EXPECT_EQ(fit.dims, k);
+  ASSERT_EQ(fit.negative_dims, 0);
+  const XqdaModel model = train_xqda(samples_of(training), options);
+  for (size_t i = 0; i < test.features.size(); i += 2)
+    for (size_t j = 1; j < test.features.size(); j += 2) {
+      cv::Mat diff;
+      cv::Mat(cv::Mat(d, 1, CV_32F, const_cast<float*>(test.features[i].data())) -
+              cv::Mat(d, 1, CV_32F, const_cast<float*>(test.features[j].data())))
+          .convertTo(diff, CV_64F);
+      const cv::Mat p = w.t() * diff;
+      const double expected = cv::Mat(p.t() * m * p).at<double>(0);
+      EXPECT_NEAR(squared_distance(model.embed(test.features[i]), model.embed(test.features[j])), expected,
+                  1e-3 * (1 + expected));
+    }
+}
+
 TEST(Xqda, EnsembleSlicesMayDifferInLength) {
   const Synthetic s = make_data(20, 9);
   const XqdaEnsemble model = train_xqda_ensemble(samples_of(s), std::vector<int>{20, 30});
