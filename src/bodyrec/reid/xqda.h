@@ -96,9 +96,11 @@ struct XqdaEnsemble {
   int embed_length() const;
   // REQUIRES feature.size() == input_length().
   std::vector<float> embed(const std::vector<float>& feature) const;
-  // Writes / reads cv::FileStorage YAML (format_version 3: projections as float16 in base64; a `.gz`
-  // name compresses). save REQUIRES features set (else ProcessingError); load throws InputError naming
-  // the file and the field at fault, and refuses the earlier format versions (train again).
+  // Writes / reads cv::FileStorage YAML (format_version 4: projections as int8 with a float scale per
+  // column, in base64; a `.gz` name compresses). Training already rounds the projections so, so a saved
+  // and reloaded model embeds exactly as the trained one. load also reads format_version 3 (float16
+  // projections); it throws InputError naming the file and the field at fault, and refuses older
+  // versions (train again). save REQUIRES features set (else ProcessingError).
   void save(const std::string& path) const;
   static XqdaEnsemble load(const std::string& path);
 };

@@ -1,6 +1,7 @@
 // XqdaEnsemble: training (one kernel-form XQDA per slice, the fused threshold calibrated on held-out
 // people through the same Gram matrices), embedding, and the model file.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <map>
@@ -20,8 +21,10 @@ namespace {
 using namespace xqda_detail;
 
 constexpr const char* kFormat = "bodyrec-xqda";
-// 2: `features` names what the model was trained on; 3: `variant`, `feature_mean`, float16 projections.
-constexpr int kFormatVersion = 3;
+// 2: `features` names what the model was trained on; 3: `variant`, `feature_mean`, float16 projections;
+// 4: int8 projections with a scale per column (half the size of 3; version 3 files are still read).
+constexpr int kFormatVersion = 4;
+constexpr int kOldestReadableVersion = 3;
 
 std::string fingerprint(const cv::Mat& m) {
   uint64_t h = 1469598103934665603ull;  // FNV-1a over the bytes
@@ -33,16 +36,37 @@ std::string fingerprint(const cv::Mat& m) {
   return std::string(text, 8);
 }
 
-// Projections are stored as float16 (the raw bits as 16-bit integers: FileStorage's base64 writer has no
-// half type); the model keeps the float32 values those stand for, so a trained and a loaded model agree.
-cv::Mat to_half_bits(const cv::Mat& m) {
-  cv::Mat half;
-  m.convertTo(half, CV_16F);
-  return cv::Mat(half.size(), CV_16U, half.data).clone();
-}
+// Version 3 files hold projections as float16 (the raw bits as 16-bit integers: FileStorage's base64
+// writer has no half type).
 cv::Mat from_half_bits(const cv::Mat& bits) {
   cv::Mat half(bits.size(), CV_16F, const_cast<uchar*>(bits.data)), out;
   half.convertTo(out, CV_32F);
+  return out;
+}
+
+// Projections are stored as int8 with one scale per column (per embedding dimension), which keeps a
+// column's largest weight exact to 1/254 of itself; the model keeps the float32 values those stand for,
+// so a trained and a loaded model agree.
+struct QuantisedProjection {
+  cv::Mat values;  // CV_8S, the projection's size
+  cv::Mat scales;  // CV_32F 1 x cols: projection(r, c) = values(r, c) * scales(c)
+};
+QuantisedProjection quantise(const cv::Mat& projection) {
+  QuantisedProjection q{cv::Mat(projection.size(), CV_8S), cv::Mat(1, projection.cols, CV_32F)};
+  for (int c = 0; c < projection.cols; ++c) {
+    double largest = 0;
+    cv::minMaxIdx(cv::abs(projection.col(c)), nullptr, &largest);
+    const float scale = largest > 0 ? static_cast<float>(largest / 127.0) : 1.0f;
+    q.scales.at<float>(c) = scale;
+    for (int r = 0; r < projection.rows; ++r)
+      q.values.at<int8_t>(r, c) = static_cast<int8_t>(std::lround(projection.at<float>(r, c) / scale));
+  }
+  return q;
+}
+cv::Mat dequantise(const QuantisedProjection& q) {
+  cv::Mat out(q.values.size(), CV_32F);
+  for (int r = 0; r < out.rows; ++r)
+    for (int c = 0; c < out.cols; ++c) out.at<float>(r, c) = q.values.at<int8_t>(r, c) * q.scales.at<float>(c);
   return out;
 }
 
@@ -166,7 +190,10 @@ void XqdaEnsemble::save(const std::string& path) const {
      << "variant" << variant << "threshold" << threshold;
   if (!feature_mean.empty()) fs << "feature_mean" << feature_mean;
   fs << "parts" << "[";
-  for (const auto& p : parts) fs << "{" << "threshold" << p.threshold << "projection_float16" << to_half_bits(p.projection) << "}";
+  for (const auto& p : parts) {
+    const QuantisedProjection q = quantise(p.projection);
+    fs << "{" << "threshold" << p.threshold << "projection_int8" << q.values << "column_scale" << q.scales << "}";
+  }
   fs << "]";
 }
 
@@ -180,9 +207,10 @@ XqdaEnsemble XqdaEnsemble::load(const std::string& path) {
   if (static_cast<std::string>(fs["format"]) != kFormat)
     throw InputError(path + ": field 'format' is not " + std::string(kFormat));
   const int version = static_cast<int>(fs["format_version"]);
-  if (version != kFormatVersion)
+  if (version < kOldestReadableVersion || version > kFormatVersion)
     throw InputError(path + ": unsupported 'format_version' " + std::to_string(version) + " (this build reads " +
-                     std::to_string(kFormatVersion) + "; train the model again with bodyrec train-reid)");
+                     std::to_string(kOldestReadableVersion) + " to " + std::to_string(kFormatVersion) +
+                     "; train the model again with bodyrec train-reid)");
   XqdaEnsemble e;
   try {
     fs["threshold"] >> e.threshold;
@@ -200,16 +228,32 @@ XqdaEnsemble XqdaEnsemble::load(const std::string& path) {
   if (!parts.isSeq() || parts.size() == 0) throw InputError(path + ": field 'parts' is missing or empty");
   for (const auto& node : parts) {
     XqdaModel m;
-    cv::Mat bits;
-    try {
-      node["projection_float16"] >> bits;
-      node["threshold"] >> m.threshold;
-    } catch (const cv::Exception&) {
-      bits = cv::Mat();
+    if (version == 3) {
+      cv::Mat bits;
+      try {
+        node["projection_float16"] >> bits;
+        node["threshold"] >> m.threshold;
+      } catch (const cv::Exception&) {
+        bits = cv::Mat();
+      }
+      if (bits.empty() || bits.type() != CV_16U)
+        throw InputError(path + ": field 'parts/projection_float16' is missing or not a float16 matrix");
+      m.projection = from_half_bits(bits);
+    } else {
+      QuantisedProjection q;
+      try {
+        node["projection_int8"] >> q.values;
+        node["column_scale"] >> q.scales;
+        node["threshold"] >> m.threshold;
+      } catch (const cv::Exception&) {
+        q.values = cv::Mat();
+      }
+      if (q.values.empty() || q.values.type() != CV_8S)
+        throw InputError(path + ": field 'parts/projection_int8' is missing or not an int8 matrix");
+      if (q.scales.type() != CV_32F || q.scales.rows != 1 || q.scales.cols != q.values.cols)
+        throw InputError(path + ": field 'parts/column_scale' is not a float row of one scale per column");
+      m.projection = dequantise(q);
     }
-    if (bits.empty() || bits.type() != CV_16U)
-      throw InputError(path + ": field 'parts/projection_float16' is missing or not a float16 matrix");
-    m.projection = from_half_bits(bits);
     m.prepare();
     e.parts.push_back(m);
   }
@@ -229,8 +273,8 @@ XqdaEnsemble train_xqda_ensemble(const std::vector<XqdaSample>& samples, const s
     fit.coefficients.convertTo(coef32, CV_32F);
     XqdaModel m;
     cv::gemm(s.features[k], coef32, 1.0, cv::noArray(), 0.0, m.projection, cv::GEMM_1_T);
-    // Stored as float16: keep the values the file will hold, so a trained and a loaded model agree.
-    m.projection = from_half_bits(to_half_bits(m.projection));
+    // Stored as int8: keep the values the file will hold, so a trained and a loaded model agree.
+    m.projection = dequantise(quantise(m.projection));
     m.prepare();
     m.threshold = fit.threshold;
     e.parts.push_back(m);

@@ -1,5 +1,6 @@
 #include "bodyrec/reid/xqda.h"
 
+#include <cmath>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -225,11 +226,18 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   XqdaEnsemble model = train_xqda_ensemble(samples, 2);  // two 25-float slices
   ASSERT_EQ(model.parts.size(), 2u);
   EXPECT_EQ(model.input_length(), 50);
-  // Projections hold float16 values (what the file stores): converting again changes nothing.
-  cv::Mat half, back_to_float;
-  model.parts[0].projection.convertTo(half, CV_16F);
-  half.convertTo(back_to_float, CV_32F);
-  EXPECT_EQ(cv::norm(back_to_float, model.parts[0].projection, cv::NORM_INF), 0.0);
+  // Projections hold int8 values times a scale per column (what the file stores): every weight of a
+  // column is a whole multiple of its largest weight / 127.
+  const cv::Mat& p0 = model.parts[0].projection;
+  for (int c = 0; c < p0.cols; ++c) {
+    double largest = 0;
+    cv::minMaxIdx(cv::abs(p0.col(c)), nullptr, &largest);
+    ASSERT_GT(largest, 0);
+    for (int r = 0; r < p0.rows; ++r) {
+      const double steps = p0.at<float>(r, c) / (largest / 127.0);
+      EXPECT_NEAR(steps, std::round(steps), 1e-3) << r << "," << c;
+    }
+  }
   testing::TempDir dir;
   const std::string path = (dir / "model.yml.gz").string();
   EXPECT_THROW(model.save(path), ProcessingError);  // the matcher must say what the features are
@@ -260,11 +268,41 @@ TEST(Xqda, ModelFileRoundTripsAndBrokenFilesAreInputErrors) {
   testing::write_text(dir / "v2.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 2\nfeatures: lomo3\n");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "v2.yml").string()); }),
                                 "format_version' 2"));
-  // A part without its projection names the field.
-  testing::write_text(dir / "noproj.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 3\nfeatures: x\n"
+  // A part without its projection names the field, in either readable version.
+  testing::write_text(dir / "noproj.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 4\nfeatures: x\n"
                                           "threshold: 1.\nparts:\n  - { threshold: 1. }\n");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "noproj.yml").string()); }),
+                                "projection_int8"));
+  testing::write_text(dir / "noproj3.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 3\nfeatures: x\n"
+                                           "threshold: 1.\nparts:\n  - { threshold: 1. }\n");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "noproj3.yml").string()); }),
                                 "projection_float16"));
+  // Too few column scales for the projection.
+  {
+    cv::FileStorage fs((dir / "scales.yml").string(), cv::FileStorage::WRITE);
+    fs << "format" << "bodyrec-xqda" << "format_version" << 4 << "features" << "x" << "threshold" << 1.0;
+    fs << "parts" << "[" << "{" << "threshold" << 1.0 << "projection_int8" << cv::Mat(4, 3, CV_8S, cv::Scalar(1))
+       << "column_scale" << cv::Mat(1, 2, CV_32F, cv::Scalar(0.5f)) << "}" << "]";
+  }
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "scales.yml").string()); }),
+                                "column_scale"));
+  // Version 3 (float16 projections) is still read.
+  {
+    cv::Mat half;
+    cv::Mat(4, 3, CV_32F, cv::Scalar(0.75f)).convertTo(half, CV_16F);
+    cv::FileStorage fs((dir / "v3.yml").string(), cv::FileStorage::WRITE);
+    fs << "format" << "bodyrec-xqda" << "format_version" << 3 << "features" << "x" << "threshold" << 1.0;
+    fs << "parts" << "[" << "{" << "threshold" << 2.0 << "projection_float16"
+       << cv::Mat(half.size(), CV_16U, half.data).clone() << "}" << "]";
+  }
+  const XqdaEnsemble v3 = XqdaEnsemble::load((dir / "v3.yml").string());
+  ASSERT_EQ(v3.parts.size(), 1u);
+  EXPECT_EQ(v3.input_length(), 4);
+  EXPECT_FLOAT_EQ(v3.parts[0].projection.at<float>(3, 2), 0.75f);
+  // Version 5 is from a newer build.
+  testing::write_text(dir / "v5.yml", "%YAML:1.0\n---\nformat: bodyrec-xqda\nformat_version: 5\nfeatures: x\n");
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "v5.yml").string()); }),
+                                "format_version' 5"));
   testing::write_text(dir / "garbage.yml", "\x01\x02 not yaml {{{");
   EXPECT_TRUE(testing::contains(testing::input_error([&] { XqdaEnsemble::load((dir / "garbage.yml").string()); }),
                                 "garbage.yml"));
