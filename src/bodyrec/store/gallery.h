@@ -94,8 +94,8 @@ class Gallery : public GalleryCache {
   // scan.quality is strictly higher than the stored one's, or the stored one has another descriptor
   // name/version (its features are useless to the current matcher); otherwise kept unchanged. Also
   // moves the user's last_seen forward to scan.time. An inserted or replaced scan records the wall clock
-  // now as its StoredScan::stored. REQUIRES: the user exists (else InputError),
-  // scan.features non-empty and quality finite (else ProcessingError).
+  // now as its StoredScan::stored. REQUIRES: the user exists (else InputError), scan.features non-empty
+  // and quality finite (else ProcessingError).
   PutResult put_scan(UserId user, const GalleryScan& scan);
   // Appends an event (id assigned, returned; Event::logged = the wall clock now, event.logged is
   // ignored); moves the user's last_seen forward to event.time; erases that user's oldest events beyond
