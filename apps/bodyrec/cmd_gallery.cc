@@ -78,15 +78,18 @@ void show(const GalleryCommand& c) {
   std::printf("user %lld%s\ncreated     %s\nfirst seen  %s\nlast seen   %s\n", static_cast<long long>(id),
               u.label.empty() ? "" : (" \"" + u.label + "\"").c_str(), format_utc(u.created).c_str(),
               format_utc(u.first_seen).c_str(), format_utc(u.last_seen).c_str());
-  std::printf("%zu scans\n%-5s %-8s %-5s %-5s %-28s %s\n", scans.size(), "view", "quality", "image", "mask",
-              "features", "time");
+  // `time` is the source's clock, `stored`/`logged` the wall clock when the gallery wrote the row ("-":
+  // written before schema 3).
+  std::printf("%zu scans\n%-5s %-8s %-5s %-5s %-28s %-20s %s\n", scans.size(), "view", "quality", "image", "mask",
+              "features", "time", "stored");
   nlohmann::json j = {{"user", user_to_json(u)}};
   j["scans"] = nlohmann::json::array();
   for (const StoredScan& s : scans) {
     const std::string features =
         s.descriptor + " v" + std::to_string(s.descriptor_version) + " " + describe_matrix(s.features);
-    std::printf("%-5s %-8.3f %-5s %-5s %-28s %s\n", view_name(s.view), s.quality, s.image_png.empty() ? "no" : "yes",
-                s.mask_png.empty() ? "no" : "yes", features.c_str(), format_utc(s.time).c_str());
+    std::printf("%-5s %-8.3f %-5s %-5s %-28s %-20s %s\n", view_name(s.view), s.quality,
+                s.image_png.empty() ? "no" : "yes", s.mask_png.empty() ? "no" : "yes", features.c_str(),
+                format_utc(s.time).c_str(), s.stored ? format_utc(*s.stored).c_str() : "-");
     j["scans"].push_back(scan_to_json(s));
   }
   std::printf("%zu events\n", events.size());
@@ -98,6 +101,7 @@ void show(const GalleryCommand& c) {
     if (e.track) line += "  track " + std::to_string(*e.track);
     if (!e.source.empty()) line += "  source " + e.source;
     if (!e.sensor.empty()) line += "  sensor " + e.sensor;
+    if (e.logged) line += "  logged " + format_utc(*e.logged);
     std::printf("%s\n", line.c_str());
     j["events"].push_back(event_to_json(e));
   }
@@ -174,7 +178,10 @@ void add(CLI::App& app) {
   sub->add_flag("--json", c->json, "End stdout with one JSON object {gallery, users: [{id, label, views, ...}]}");
   sub->callback([c] { list(*c); });
 
-  sub = gallery->add_subcommand("show", "One user's scans (view, quality, time) and event history");
+  sub = gallery->add_subcommand(
+      "show", "One user's scans (view, quality, time, stored) and event history (time, ..., logged)");
+  sub->footer("time: the source's clock (when it happened in the recording); stored/logged: the wall clock when\n"
+              "bodyrec wrote it (absent in rows of galleries before schema 3)");
   sub->add_option("USER", c->user, "User id or label")->required();
   sub->add_flag("--json", c->json, "End stdout with one JSON object {user, scans, events}");
   sub->callback([c] { show(*c); });

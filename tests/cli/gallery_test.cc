@@ -94,6 +94,53 @@ TEST(GalleryCli, ShowByIdOrLabel) {
   EXPECT_EQ(bad.err, "bodyrec: error: " + path + ": no user with id or label 'bob'\n");
 }
 
+// `time` is the source's clock (the footage's 2026-11-20), `stored`/`logged` when bodyrec wrote the row;
+// rows of a schema 2 gallery have none ("-" in the text, no key in the JSON).
+TEST(GalleryCli, ShowAndExportGiveTheWallTimeBesideTheSourcesTime) {
+  TempDir dir;
+  const std::string before = format_utc(GalleryClock::now());
+  const std::string path = make_gallery(dir);
+  RunResult r = run_bodyrec({"gallery", "--gallery", path, "show", "alice", "--json"});
+  const std::string after = format_utc(GalleryClock::now());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = last_json_line(r.out);
+  ASSERT_EQ(j["scans"].size(), 4u);
+  EXPECT_EQ(j["scans"][2]["time"], "2026-11-20T13:02:00Z");
+  const std::string stored = j["scans"][2]["stored"];
+  EXPECT_TRUE(before <= stored && stored <= after) << stored;
+  ASSERT_EQ(j["events"].size(), 2u);
+  EXPECT_EQ(j["events"][1]["time"], "2026-11-20T13:05:00Z");
+  const std::string logged = j["events"][1]["logged"];
+  EXPECT_TRUE(before <= logged && logged <= after) << logged;
+  EXPECT_TRUE(contains(r.out, "time                 stored\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "test v1 1x64 32F             2026-11-20T13:02:00Z " + stored + "\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "score 24.0  track 9  source rec2  logged " + logged + "\n")) << r.out;
+  r = run_bodyrec({"gallery", "--gallery", path, "export", "1", (dir / "alice").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = nlohmann::json::parse(read_text(dir / "alice" / "user.json"));
+  EXPECT_EQ(j["scans"][2]["stored"], stored);
+  EXPECT_EQ(j["events"][1]["logged"], logged);
+
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db,
+                         "ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms; "
+                         "PRAGMA user_version = 2",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  ASSERT_EQ(run_bodyrec({"gallery", "--gallery", path, "init"}).exit_code, 0);  // upgrades it
+  r = run_bodyrec({"gallery", "--gallery", path, "show", "alice", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = last_json_line(r.out);
+  EXPECT_EQ(j["scans"][2]["time"], "2026-11-20T13:02:00Z");
+  EXPECT_FALSE(j["scans"][2].contains("stored")) << j;
+  EXPECT_EQ(j["events"][1]["time"], "2026-11-20T13:05:00Z");
+  EXPECT_FALSE(j["events"][1].contains("logged")) << j;
+  EXPECT_TRUE(contains(r.out, "test v1 1x64 32F             2026-11-20T13:02:00Z -\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "score 24.0  track 9  source rec2\n")) << r.out;
+}
+
 // Numbers print with the precision they carry, as in every other JSON output (io/json_numbers.h).
 TEST(GalleryCli, ShowPrintsRoundedNumbers) {
   TempDir dir;
@@ -210,12 +257,12 @@ TEST(GalleryCli, MissingForeignAndNewerGalleriesAreInputErrors) {
   const std::string newer = make_gallery(dir);
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(newer.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 3", nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 4", nullptr, nullptr, nullptr), SQLITE_OK);
   sqlite3_close(db);
   const RunResult future = run_bodyrec({"gallery", "--gallery", newer, "show", "1"});
   EXPECT_EQ(future.exit_code, 3);
   EXPECT_EQ(future.err, "bodyrec: error: " + newer +
-                            ": gallery schema version 3 is newer than this bodyrec reads (up to 2); use a newer bodyrec\n");
+                            ": gallery schema version 4 is newer than this bodyrec reads (up to 3); use a newer bodyrec\n");
 }
 
 }  // namespace

@@ -61,8 +61,9 @@ struct GalleryOptions {
 };
 
 // The schema version this build writes (SQLite: PRAGMA user_version; PostgreSQL: bodyrec_gallery).
-// Older galleries are migrated on open. 2: events record their sensor.
-constexpr int kGallerySchemaVersion = 2;
+// Older galleries are migrated on open. 2: events record their sensor. 3: events and scans record the
+// wall time at which the gallery wrote them (Event::logged, StoredScan::stored).
+constexpr int kGallerySchemaVersion = 3;
 
 namespace store {
 class GalleryBackend;
@@ -75,7 +76,7 @@ class Gallery : public GalleryCache {
   // Opens (or creates) the gallery at `path` (a file, or a postgresql:// URI) and loads the feature cache.
   // Throws InputError naming the file when it is missing (without create), not an SQLite database,
   // another application's database, or from a newer schema ("... schema version N is newer than this
-  // bodyrec reads (up to 2)"); for a URI, also when the server cannot be reached or the database does
+  // bodyrec reads (up to 3)"); for a URI, also when the server cannot be reached or the database does
   // not exist; UsageError for a URI that holds a password. Older schemas are upgraded in one transaction
   // (not in read_only mode: InputError).
   Gallery(const std::string& path, const GalleryOptions& options = {});
@@ -92,11 +93,13 @@ class Gallery : public GalleryCache {
   // Keeps the best scan per (user, view). ENSURES: inserted when the view had none; replaced when
   // scan.quality is strictly higher than the stored one's, or the stored one has another descriptor
   // name/version (its features are useless to the current matcher); otherwise kept unchanged. Also
-  // moves the user's last_seen forward to scan.time. REQUIRES: the user exists (else InputError),
-  // scan.features non-empty and quality finite (else ProcessingError).
+  // moves the user's last_seen forward to scan.time. An inserted or replaced scan records the wall clock
+  // now as its StoredScan::stored. REQUIRES: the user exists (else InputError), scan.features non-empty
+  // and quality finite (else ProcessingError).
   PutResult put_scan(UserId user, const GalleryScan& scan);
-  // Appends an event (id assigned, returned); moves the user's last_seen forward to event.time; erases
-  // that user's oldest events beyond options().max_events_per_user.
+  // Appends an event (id assigned, returned; Event::logged = the wall clock now, event.logged is
+  // ignored); moves the user's last_seen forward to event.time; erases that user's oldest events beyond
+  // options().max_events_per_user.
   int64_t log_event(const Event& event);
   // add_user + put_scan + an `enrolled` event, in one transaction.
   UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},

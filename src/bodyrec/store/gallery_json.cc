@@ -39,14 +39,16 @@ nlohmann::json user_to_json(const User& user) {
 }
 
 nlohmann::json scan_to_json(const StoredScan& scan) {
-  return {{"view", view_name(scan.view)},
-          {"quality", scan.quality},
-          {"image", !scan.image_png.empty()},
-          {"mask", !scan.mask_png.empty()},
-          {"descriptor", scan.descriptor},
-          {"descriptor_version", scan.descriptor_version},
-          {"features", describe_matrix(scan.features)},
-          {"time", format_utc(scan.time)}};
+  nlohmann::json j = {{"view", view_name(scan.view)},
+                      {"quality", scan.quality},
+                      {"image", !scan.image_png.empty()},
+                      {"mask", !scan.mask_png.empty()},
+                      {"descriptor", scan.descriptor},
+                      {"descriptor_version", scan.descriptor_version},
+                      {"features", describe_matrix(scan.features)},
+                      {"time", format_utc(scan.time)}};
+  if (scan.stored) j["stored"] = format_utc(*scan.stored);
+  return j;
 }
 
 nlohmann::json event_to_json(const Event& event) {
@@ -57,6 +59,7 @@ nlohmann::json event_to_json(const Event& event) {
   if (event.track) j["track"] = *event.track;
   if (!event.source.empty()) j["source"] = event.source;
   if (!event.sensor.empty()) j["sensor"] = event.sensor;
+  if (event.logged) j["logged"] = format_utc(*event.logged);
   return j;
 }
 

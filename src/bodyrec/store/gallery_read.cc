@@ -76,8 +76,8 @@ UserId Gallery::resolve_user(const std::string& id_or_label) {
 
 std::vector<StoredScan> Gallery::user_scans(UserId user) {
   sql::Statement s(*db_,
-                   "SELECT view, image_png, mask_png, features, descriptor, descriptor_version, quality, time_ms "
-                   "FROM scans WHERE \"user\" = ?1 ORDER BY view");
+                   "SELECT view, image_png, mask_png, features, descriptor, descriptor_version, quality, time_ms, "
+                   "stored_ms FROM scans WHERE \"user\" = ?1 ORDER BY view");
   s.bind(1, static_cast<int64_t>(user));
   std::vector<StoredScan> scans;
   while (s.step()) {
@@ -92,13 +92,14 @@ std::vector<StoredScan> Gallery::user_scans(UserId user) {
     scan.descriptor_version = static_cast<int>(s.column_int(5));
     scan.quality = s.column_double(6);
     scan.time = from_unix_ms(s.column_int(7));
+    if (!s.is_null(8)) scan.stored = from_unix_ms(s.column_int(8));
     scans.push_back(std::move(scan));
   }
   return scans;
 }
 
 std::vector<Event> Gallery::events(std::optional<UserId> user) {
-  std::string sql = "SELECT id, \"user\", kind, score, view, time_ms, track, source, sensor FROM events";
+  std::string sql = "SELECT id, \"user\", kind, score, view, time_ms, track, source, sensor, logged_ms FROM events";
   sql += user ? " WHERE \"user\" = ?1 ORDER BY id" : " ORDER BY id";
   sql::Statement s(*db_, sql);
   if (user) s.bind(1, static_cast<int64_t>(*user));
@@ -117,6 +118,7 @@ std::vector<Event> Gallery::events(std::optional<UserId> user) {
     if (!s.is_null(6)) e.track = s.column_int(6);
     e.source = s.column_text(7);
     e.sensor = s.column_text(8);
+    if (!s.is_null(9)) e.logged = from_unix_ms(s.column_int(9));
     events.push_back(std::move(e));
   }
   return events;

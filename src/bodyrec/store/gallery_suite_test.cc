@@ -18,7 +18,7 @@ TEST_P(GallerySuite, NewerSchemaIsRefusedNamingBothVersions) {
   { Gallery g(path, creating()); }
   set_schema_version(path, 7);
   EXPECT_EQ(input_error([&] { Gallery g(path); }),
-            path + ": gallery schema version 7 is newer than this bodyrec reads (up to 2); use a newer bodyrec");
+            path + ": gallery schema version 7 is newer than this bodyrec reads (up to 3); use a newer bodyrec");
 }
 
 TEST_P(GallerySuite, EmptyGalleryNeedsCreateAndIsThenInitialised) {
@@ -47,12 +47,13 @@ TEST_P(GallerySuite, SchemaOneIsUpgradedKeepingEveryRow) {
     Gallery g(path, creating());
     u = g.enrol(make_scan(View::F, 0.5, 1), "alice", 3, "rec1");
   }
-  raw_sql(path, "ALTER TABLE events DROP COLUMN sensor; DROP TABLE gallery_state");
+  raw_sql(path, "ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms; "
+                "ALTER TABLE events DROP COLUMN sensor; DROP TABLE gallery_state");
   set_schema_version(path, 1);
   GalleryOptions read_only;
   read_only.read_only = true;
   EXPECT_TRUE(contains(input_error([&] { Gallery g(path, read_only); }),
-                       "gallery schema version 1 needs an upgrade to 2; open it once for writing"));
+                       "gallery schema version 1 needs an upgrade to 3; open it once for writing"));
   GalleryOptions o;
   o.sensor = "door";
   Gallery g(path, o);

@@ -15,7 +15,9 @@
 
 namespace bodyrec {
 
-// Wall-clock times; stored as integer milliseconds since the Unix epoch (UTC).
+// Times on the system clock; stored as integer milliseconds since the Unix epoch (UTC). A `time` is the
+// source's clock (when it happened in the recording, apps/bodyrec/source_clock.h); `created`, `stored`
+// and `logged` are the wall clock when the gallery wrote the row.
 using GalleryClock = std::chrono::system_clock;
 using GalleryTime = GalleryClock::time_point;
 using UserId = int64_t;
@@ -59,6 +61,7 @@ struct StoredScan {
   int descriptor_version = 1;
   double quality = 0;
   GalleryTime time;
+  std::optional<GalleryTime> stored;  // when the gallery wrote it; none in galleries before schema 3
 };
 
 struct User {
@@ -83,6 +86,9 @@ struct Event {
   std::optional<int64_t> track;  // tracking id of the body in the source
   std::string source;            // recording or camera the event came from; "" when unknown
   std::string sensor;            // the sensor that logged it (reid --sensor-id); "" when unknown
+  // When the gallery wrote it (set by Gallery::log_event, not by callers); none in galleries before
+  // schema 3.
+  std::optional<GalleryTime> logged;
 };
 
 // What forget/purge/prune erased.

@@ -82,12 +82,12 @@ PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
     if (!old.step()) {
       result = PutResult::kInserted;
       sql = "INSERT INTO scans(\"user\", view, image_png, mask_png, features, descriptor, descriptor_version, "
-            "quality, time_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)";
+            "quality, time_ms, stored_ms) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)";
     } else if (scan.quality > old.column_double(0) || old.column_text(1) != scan.descriptor ||
                old.column_int(2) != scan.descriptor_version) {
       result = PutResult::kReplaced;
       sql = "UPDATE scans SET image_png = ?3, mask_png = ?4, features = ?5, descriptor = ?6, "
-            "descriptor_version = ?7, quality = ?8, time_ms = ?9 WHERE \"user\" = ?1 AND view = ?2";
+            "descriptor_version = ?7, quality = ?8, time_ms = ?9, stored_ms = ?10 WHERE \"user\" = ?1 AND view = ?2";
     }
     old.reset();
     if (sql) {
@@ -95,7 +95,7 @@ PutResult Gallery::put_scan(UserId user, const GalleryScan& scan) {
       s.bind(1, static_cast<int64_t>(user)).bind(2, static_cast<int64_t>(scan.view));
       s.bind_blob(3, image).bind_blob(4, mask).bind_blob(5, features);
       s.bind(6, scan.descriptor).bind(7, static_cast<int64_t>(scan.descriptor_version));
-      s.bind(8, scan.quality).bind(9, to_unix_ms(scan.time)).run();
+      s.bind(8, scan.quality).bind(9, to_unix_ms(scan.time)).bind(10, to_unix_ms(GalleryClock::now())).run();
     }
     touch(user, scan.time);
     if (sql) {
@@ -119,13 +119,13 @@ int64_t Gallery::log_event(const Event& event) {
     if (event.user && count(*db_, "SELECT count(*) FROM users WHERE id = ?1", *event.user) == 0)
       throw InputError(path_ + ": event for unknown user " + std::to_string(*event.user));
     sql::Statement s(*db_,
-                     "INSERT INTO events(\"user\", kind, score, view, time_ms, track, source, sensor) "
-                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8) RETURNING id");
+                     "INSERT INTO events(\"user\", kind, score, view, time_ms, track, source, sensor, logged_ms) "
+                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9) RETURNING id");
     s.bind(1, event.user ? std::optional<int64_t>(*event.user) : std::nullopt);
     s.bind(2, std::string(event_kind_name(event.kind))).bind(3, event.score);
     s.bind(4, event.view ? std::optional<int64_t>(static_cast<int64_t>(*event.view)) : std::nullopt);
     s.bind(5, to_unix_ms(event.time)).bind(6, event.track).bind(7, event.source);
-    s.bind(8, event.sensor.empty() ? options_.sensor : event.sensor);
+    s.bind(8, event.sensor.empty() ? options_.sensor : event.sensor).bind(9, to_unix_ms(GalleryClock::now()));
     if (!s.step()) throw ProcessingError(path_ + ": logging an event returned no id");
     id = s.column_int(0);
     s.reset();

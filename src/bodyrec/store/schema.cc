@@ -59,7 +59,16 @@ CREATE TABLE gallery_state(
 INSERT INTO gallery_state(id) VALUES (1);
 )sql";
 
-constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2};
+// Version 2 -> 3: the wall clock (ms since the Unix epoch) at which the gallery wrote each event and each
+// scan (a replaced scan: its replacement). time_ms is the source's clock (when it happened in the
+// recording); these say when bodyrec wrote it. NULL in rows of older galleries: unknown. stored_ms comes
+// after the pixels; only show/export read it, never the feature cache.
+constexpr const char* kV3 = R"sql(
+ALTER TABLE events ADD COLUMN logged_ms {int};
+ALTER TABLE scans ADD COLUMN stored_ms {int};
+)sql";
+
+constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2, kV3};
 
 }  // namespace
 
