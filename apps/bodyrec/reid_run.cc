@@ -76,7 +76,16 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
   const AfterFrame after{stats, sink};
   const auto process = [&](const RgbdFrame& rf, const Frame& f, const FrameArrival& arrival) {
     slow_stage(live);
-    const ColourReidResult r = pipeline.process(f);
+    ColourReidResult r;
+    if (input.true_bodies != ReidInput::TrueBodies::kNone && input.source) {
+      std::vector<ColourReidPipeline::GivenBody> given;
+      const bool masks = input.true_bodies == ReidInput::TrueBodies::kMasks;
+      for (TrueBody& t : true_bodies(input.source->meta(), rf))
+        given.push_back({t.track, t.box, masks ? t.mask : cv::Mat()});
+      r = pipeline.process(f, given);
+    } else {
+      r = pipeline.process(f);
+    }
     std::vector<OrientedBody> bodies;
     for (const ColourBody& b : r.bodies) {
       OrientedBody o;
