@@ -143,10 +143,12 @@ void add(CLI::App& app) {
   add_enum_option(*sub, "--true-bodies", command->true_bodies,
                   std::vector<std::pair<std::string, ReidInput::TrueBodies>>{{"none", ReidInput::TrueBodies::kNone},
                                                                              {"masks", ReidInput::TrueBodies::kMasks},
-                                                                             {"boxes", ReidInput::TrueBodies::kBoxes}},
+                                                                             {"boxes", ReidInput::TrueBodies::kBoxes},
+                                                                             {"detections", ReidInput::TrueBodies::kDetections}},
                   "With --colour-only, a diagnosis of what detection and tracking lose: the bodies and their track "
                   "ids from the recording's truth instead of the detector and tracker, cut out by their true masks "
-                  "(masks) or by the foreground inside their boxes (boxes); none: detected and tracked",
+                  "(masks) or by the foreground inside their boxes (boxes); detections: the true boxes as the "
+                  "tracker's detections (the tracker's ids, foreground masks); none: detected and tracked",
                   "none");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (accuracy, splits, merges, frames, body_frames, undecided, users, "

@@ -9,6 +9,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "bodyrec/detection/people_detector.h"
 #include "bodyrec/rgbd/recording.h"
 
 namespace bodyrec {
@@ -33,5 +34,17 @@ struct TrueBody {
   cv::Mat mask;            // CV_8U, box-sized, 255 = this person
 };
 std::vector<TrueBody> true_bodies(const RecordingMeta& meta, const RgbdFrame& frame, int min_visible_px = 1500);
+
+// A detector that finds what it is told (diagnosis: true boxes through the real tracker): detect() gives
+// the detections of the last set(), each with score 1.
+class ListedDetector : public PeopleDetector {
+ public:
+  void set(const std::vector<cv::Rect>& boxes);
+  std::vector<Detection> detect(const cv::Mat& frame) override;
+  std::string describe() const override { return "listed boxes"; }
+
+ private:
+  std::vector<Detection> next_;
+};
 
 }  // namespace bodyrec

@@ -42,5 +42,22 @@ TEST(TrueBodies, EachVisiblePersonWithTheirTrackingIdAndAMaskOfTheirBox) {
   EXPECT_TRUE(true_bodies(synth.meta(), f, 10000000).empty());
 }
 
+TEST(ListedDetector, FindsWhatItWasLastToldWhateverTheFrame) {
+  ListedDetector d;
+  const cv::Mat frame(100, 100, CV_8UC3, cv::Scalar(0, 0, 0));
+  EXPECT_TRUE(d.detect(frame).empty());
+  d.set({cv::Rect(10, 20, 30, 60), cv::Rect(50, 5, 20, 40)});
+  const std::vector<Detection> found = d.detect(frame);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_DOUBLE_EQ(found[1].box.x, 50);
+  EXPECT_DOUBLE_EQ(found[1].box.y, 5);
+  EXPECT_DOUBLE_EQ(found[1].box.width, 20);
+  EXPECT_DOUBLE_EQ(found[1].box.height, 40);
+  EXPECT_DOUBLE_EQ(found[0].score, 1.0);
+  EXPECT_EQ(d.detect(frame).size(), 2u);  // until told otherwise
+  d.set({});
+  EXPECT_TRUE(d.detect(frame).empty());
+}
+
 }  // namespace
 }  // namespace bodyrec
