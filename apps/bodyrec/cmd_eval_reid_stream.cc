@@ -8,8 +8,11 @@
 #include "bodyrec/eval/reid_stream_metrics.h"
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
+#include "bodyrec/reid/colour_truth.h"
 #include "bodyrec/reid/memory_reid_store.h"
+#include "bodyrec/reid/visit_separability.h"
 #include "command.h"
+#include "enum_option.h"
 #include "reid_output.h"
 
 namespace bodyrec::cli {
@@ -19,12 +22,14 @@ struct EvalReidStreamCommand {
   std::string input, jsonl, gallery;
   ReidCliOptions options;
   bool json = false;
+  ReidInput::TrueBodies true_bodies = ReidInput::TrueBodies::kNone;
 
   void run() const {
     ReidInput in = open_reid_input(input, options);  // before any file is created
     if (!in.source)
       throw InputError(input + ": eval reid-stream needs a recording with truth (bodyrec synth; --colour-only for its "
                                "colour alone)");
+    if (true_bodies != ReidInput::TrueBodies::kNone && !in.colour) throw UsageError("--true-bodies is for --colour-only");
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     // A fresh store in memory unless a gallery is named.
@@ -37,7 +42,12 @@ struct EvalReidStreamCommand {
       store = std::make_unique<GalleryReidStore>(*g, *in.matcher, GalleryReidStoreOptions{input, std::nullopt});
     }
     in.score_truth = true;
+    in.true_bodies = true_bodies;
     ReidStreamCounter counter;
+    // With true bodies: how far apart the matcher's descriptors of clear true-mask scans put people
+    // across their visits.
+    std::unique_ptr<VisitSeparability> separability;
+    if (true_bodies != ReidInput::TrueBodies::kNone) separability = std::make_unique<VisitSeparability>(*in.matcher);
     bool any_truth = false;
     int last_frame = -1, visible = 0;
     double ms = 0, last_time = 0;
@@ -59,6 +69,13 @@ struct EvalReidStreamCommand {
         }
         lines->write(j);
       }
+      if (separability && f.frame.truth && f.frame.index >= 0)
+        for (const TrueBody& t : bodyrec::true_bodies(in.source->meta(), f.frame)) {
+          const auto scan = colour_scan(f.frame.color, t.box, t.mask, ViewEstimate{}, 0.0);
+          if (scan && scan->quality >= TrackSegmentOptions{}.min_quality)
+            separability->add(f.frame.truth->people[static_cast<size_t>(t.person)].identity, t.track,
+                              in.matcher->describe(PersonImage{scan->image, scan->mask, scan->row_height_m}));
+        }
       if (f.frame.truth) {
         any_truth = true;
         for (size_t i = 0; i < f.bodies.size(); ++i) {
@@ -83,21 +100,31 @@ struct EvalReidStreamCommand {
     // Colour-only: the people the detector and tracker never gave a body are not in the body-frames above.
     const double coverage = visible > 0 ? static_cast<double>(s.frames) / visible : 0.0;
     if (in.colour) std::printf("coverage      %.4f (body-frames with a true person / people visible)\n", coverage);
-    if (json)
-      std::printf("%s\n", json_text(nlohmann::json({{"accuracy", s.accuracy},
-                                          {"splits", s.splits},
-                                          {"merges", s.merges},
-                                          {"frames", frames},
-                                          {"body_frames", s.frames},
-                                          {"undecided", s.undecided},
-                                          {"users", s.users},
-                                          {"identities", s.identities},
-                                          {"ms_per_frame", per_frame},
-                                          {"colour_only", in.colour != nullptr},
-                                          {"coverage", in.colour ? nlohmann::json(coverage) : nlohmann::json()},
-                                          {"matcher", options.matcher},
-                                          {"match_views", to_string(match_views(options))}}))
-                              .c_str());
+    VisitSeparability::Score sep;
+    if (separability) {
+      sep = separability->score();
+      std::printf("separability  %.4f nearest other-visit scan is the same person, %.4f above the threshold (%d clear "
+                  "true-mask scans of people seen twice)\n",
+                  sep.nn_accuracy, sep.above_threshold, sep.probes);
+    }
+    if (json) {
+      nlohmann::json j({{"accuracy", s.accuracy},
+                        {"splits", s.splits},
+                        {"merges", s.merges},
+                        {"frames", frames},
+                        {"body_frames", s.frames},
+                        {"undecided", s.undecided},
+                        {"users", s.users},
+                        {"identities", s.identities},
+                        {"ms_per_frame", per_frame},
+                        {"colour_only", in.colour != nullptr},
+                        {"coverage", in.colour ? nlohmann::json(coverage) : nlohmann::json()},
+                        {"matcher", options.matcher},
+                        {"match_views", to_string(match_views(options))}});
+      if (separability)
+        j["separability"] = {{"nn_accuracy", sep.nn_accuracy}, {"above_threshold", sep.above_threshold}, {"probes", sep.probes}};
+      std::printf("%s\n", json_text(j).c_str());
+    }
   }
 };
 
@@ -113,10 +140,20 @@ void add(CLI::App& app) {
                   "Start from (and write to) this gallery instead of a fresh one in memory");
   add_reid_options(*sub, command->options, false);
   sub->add_option("--jsonl", command->jsonl, "The run's per-frame output, as `bodyrec reid --jsonl` writes it, each body with its true \"person\" (identity, null when none)");
+  add_enum_option(*sub, "--true-bodies", command->true_bodies,
+                  std::vector<std::pair<std::string, ReidInput::TrueBodies>>{{"none", ReidInput::TrueBodies::kNone},
+                                                                             {"masks", ReidInput::TrueBodies::kMasks},
+                                                                             {"boxes", ReidInput::TrueBodies::kBoxes},
+                                                                             {"detections", ReidInput::TrueBodies::kDetections}},
+                  "With --colour-only, a diagnosis of what detection and tracking lose: the bodies and their track "
+                  "ids from the recording's truth instead of the detector and tracker, cut out by their true masks "
+                  "(masks) or by the foreground inside their boxes (boxes); detections: the true boxes as the "
+                  "tracker's detections (the tracker's ids, foreground masks); none: detected and tracked",
+                  "none");
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (accuracy, splits, merges, frames, body_frames, undecided, users, "
                 "identities, ms_per_frame, colour_only, coverage: colour-only body-frames with a true person over "
-                "the people visible)");
+                "the people visible; with --true-bodies, separability: nn_accuracy, above_threshold, probes)");
   sub->footer("Example: bodyrec synth --scenario reenter --people 5 --frames 300 --seed 2 --out rec -q && "
               "bodyrec eval reid-stream rec --json && bodyrec eval reid-stream rec --colour-only --json");
   sub->callback([command] { command->run(); });

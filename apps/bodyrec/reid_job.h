@@ -69,6 +69,10 @@ struct ReidInput {
   std::unique_ptr<AppearanceMatcher> matcher;
   std::unique_ptr<ColourInput> colour;   // the plain-camera path
   bool score_truth = false;  // colour-only on a recording with truth: each body's true person (evaluation)
+  // Colour-only diagnosis: bodies from the truth (colour_truth.h) instead of the detector and tracker, with
+  // their true masks or (kBoxes) the foreground inside their boxes; or (kDetections) the true boxes as the
+  // tracker's detections (the foreground cuts them out).
+  enum class TrueBodies { kNone, kMasks, kBoxes, kDetections } true_bodies = TrueBodies::kNone;
 };
 ReidInput open_reid_input(const std::string& input, const ReidCliOptions& options);
 

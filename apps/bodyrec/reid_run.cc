@@ -67,7 +67,9 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
                              const std::function<void(const ReidFrame&)>& sink) {
   ColourInput& c = *input.colour;
   c.options.reid.all_views = match_views(options) == MatchViews::kAll;
-  ColourReidPipeline pipeline(*c.detector, store, *input.matcher, c.options, c.masker.get(), c.ground.get());
+  ListedDetector listed;  // --true-bodies detections
+  const bool listing = input.true_bodies == ReidInput::TrueBodies::kDetections && input.source;
+  ColourReidPipeline pipeline(listing ? listed : *c.detector, store, *input.matcher, c.options, c.masker.get(), c.ground.get());
   const LiveCliOptions& live = options.orient.live;
   FrameLoopOptions lo = loop_options(live, options.orient.max_frames);
   const bool is_live = lo.live || options.colour.camera >= 0;
@@ -76,7 +78,21 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
   const AfterFrame after{stats, sink};
   const auto process = [&](const RgbdFrame& rf, const Frame& f, const FrameArrival& arrival) {
     slow_stage(live);
-    const ColourReidResult r = pipeline.process(f);
+    ColourReidResult r;
+    if (listing) {
+      std::vector<cv::Rect> boxes;
+      for (const TrueBody& t : true_bodies(input.source->meta(), rf)) boxes.push_back(t.box);
+      listed.set(boxes);
+      r = pipeline.process(f);
+    } else if (input.true_bodies != ReidInput::TrueBodies::kNone && input.source) {
+      std::vector<ColourReidPipeline::GivenBody> given;
+      const bool masks = input.true_bodies == ReidInput::TrueBodies::kMasks;
+      for (TrueBody& t : true_bodies(input.source->meta(), rf))
+        given.push_back({t.track, t.box, masks ? t.mask : cv::Mat()});
+      r = pipeline.process(f, given);
+    } else {
+      r = pipeline.process(f);
+    }
     std::vector<OrientedBody> bodies;
     for (const ColourBody& b : r.bodies) {
       OrientedBody o;

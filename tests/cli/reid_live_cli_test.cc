@@ -177,5 +177,29 @@ TEST(ReidLiveCli, ColourOnlyRecordingIsScored) {
   EXPECT_EQ(camera.exit_code, 2) << camera.err;
 }
 
+// The diagnosis with the truth's bodies: every visible person is a body, and with their own masks and
+// track ids the colour decisions give each their own user; separability is reported.
+TEST(ReidLiveCli, ColourOnlyWithTrueBodies) {
+  const RunResult r = run_bodyrec(
+      {"eval", "reid-stream", long_walk().string(), "--colour-only", "--true-bodies", "masks", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["identities"].get<int>(), 3);
+  EXPECT_EQ(j["merges"].get<int>(), 0);
+  EXPECT_EQ(j["splits"].get<int>(), 0);
+  EXPECT_GT(j["accuracy"].get<double>(), 0.8);
+  EXPECT_GT(j["coverage"].get<double>(), 0.95);
+  EXPECT_GT(j["separability"]["probes"].get<int>(), 0);
+  EXPECT_GT(j["separability"]["nn_accuracy"].get<double>(), 0.9);
+  const RunResult detections = run_bodyrec(
+      {"eval", "reid-stream", long_walk().string(), "--colour-only", "--true-bodies", "detections", "--json"});
+  ASSERT_EQ(detections.exit_code, 0) << detections.err;
+  EXPECT_GT(last_json_line(detections.out)["coverage"].get<double>(), 0.9);
+  // Without --colour-only, and with an unknown choice: usage errors.
+  EXPECT_EQ(run_bodyrec({"eval", "reid-stream", long_walk().string(), "--true-bodies", "masks"}).exit_code, 2);
+  EXPECT_EQ(run_bodyrec({"eval", "reid-stream", long_walk().string(), "--colour-only", "--true-bodies", "all"}).exit_code,
+            2);
+}
+
 }  // namespace
 }  // namespace bodyrec::testing

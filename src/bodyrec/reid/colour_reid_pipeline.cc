@@ -60,9 +60,7 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
   if (own_foreground_) own_foreground_->update(frame.image);
   out.ms_detect = ms_since(t0);
 
-  t0 = std::chrono::steady_clock::now();
   const cv::Size size = frame.image.size();
-  segments_.next_frame();
   for (const TrackedPerson& t : tracks) {
     if (t.id < 0) continue;
     ColourBody b;
@@ -71,6 +69,40 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
     b.detected = t.frames_since_match == 0;
     if (!b.box.empty()) out.bodies.push_back(b);
   }
+  identify(frame, std::vector<cv::Mat>(out.bodies.size()), out);
+  return out;
+}
+
+ColourReidResult ColourReidPipeline::process(const Frame& frame, const std::vector<GivenBody>& given) {
+  if (frame.image.empty() || frame.image.type() != CV_8UC3)
+    throw InputError(frame.name + ": frame " + std::to_string(frame.index) + " is not a BGR image");
+  ColourReidResult out;
+  // The masker's background model learns every frame, as with detected bodies.
+  auto t0 = std::chrono::steady_clock::now();
+  detector_.detect(frame.image);
+  if (own_foreground_) own_foreground_->update(frame.image);
+  out.ms_detect = ms_since(t0);
+  std::vector<cv::Mat> masks;
+  const cv::Rect all(0, 0, frame.image.cols, frame.image.rows);
+  for (const GivenBody& g : given) {
+    ColourBody b;
+    b.track = g.track;
+    b.box = g.box & all;
+    b.detected = true;
+    if (b.box.empty()) continue;
+    if (!g.mask.empty() && (b.box != g.box || g.mask.size() != g.box.size()))
+      throw InputError(frame.name + ": frame " + std::to_string(frame.index) + ": a given mask does not match its box");
+    out.bodies.push_back(b);
+    masks.push_back(g.mask);
+  }
+  identify(frame, masks, out);
+  return out;
+}
+
+void ColourReidPipeline::identify(const Frame& frame, const std::vector<cv::Mat>& masks, ColourReidResult& out) {
+  auto t0 = std::chrono::steady_clock::now();
+  const cv::Size size = frame.image.size();
+  segments_.next_frame();
   // The share of each box that others cover (their pixels are in its mask).
   for (ColourBody& b : out.bodies) {
     double covered = 0;
@@ -79,7 +111,8 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
     b.occluded = std::min(1.0, covered / std::max(1, b.box.area()));
   }
   std::vector<ReidBody> bodies;
-  for (ColourBody& b : out.bodies) {
+  for (size_t i = 0; i < out.bodies.size(); ++i) {
+    ColourBody& b = out.bodies[i];
     b.view = views_.estimate(b.track, frame.time_s, b.box, frame.image);
     b.face = views_.last_face();
     ReidBody rb;
@@ -90,7 +123,7 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
     std::optional<PartialScan> scan;
     const bool watch = options_.segments.enabled;
     if (b.detected && (watch || reid_.wants_scan(segments_.key(b.track, nullptr), b.view))) {
-      const cv::Mat mask = masker_->mask(frame.image, b.box);
+      const cv::Mat mask = masks[i].empty() ? masker_->mask(frame.image, b.box) : masks[i];
       if (ground_ && !mask.empty() && b.occluded < 0.05) {
         // Stature from the mask's top and bottom rows, when the body is whole in the frame.
         std::vector<cv::Point> points;
@@ -119,7 +152,6 @@ ColourReidResult ColourReidPipeline::process(const Frame& frame) {
   t0 = std::chrono::steady_clock::now();
   out.step = reid_.step(frame.time_s, bodies);
   out.ms_reid = ms_since(t0);
-  return out;
 }
 
 }  // namespace bodyrec

@@ -83,12 +83,25 @@ class ColourReidPipeline {
   ~ColourReidPipeline();
   // One frame (BGR, frames in time order, frame.index increasing).
   ColourReidResult process(const Frame& frame);
+  // One frame whose bodies are given instead of detected and tracked (diagnosis: a perfect detector and
+  // tracker, e.g. true_bodies() of colour_truth.h): each with its track id, box and box-sized mask (CV_8U,
+  // 255 = body; empty: the pipeline's masker). The detector still sees the frame (its background model
+  // learns), its detections are not used.
+  struct GivenBody {
+    uint64_t track = 0;
+    cv::Rect box;
+    cv::Mat mask;
+  };
+  ColourReidResult process(const Frame& frame, const std::vector<GivenBody>& given);
   // Decides what can be decided and ends every track (`left`).
   std::vector<ReidEvent> finish() { return reid_.finish(); }
   const OnlineReid& decisions() const { return reid_; }
   const TrackSegments& segments() const { return segments_; }
 
  private:
+  // Views, scans, keys and decisions of out.bodies (tracks and boxes set); masks[i] empty: the masker's.
+  void identify(const Frame& frame, const std::vector<cv::Mat>& masks, ColourReidResult& out);
+
   PeopleDetector& detector_;
   ColourReidOptions options_;
   const ColourGround* ground_;

@@ -152,6 +152,41 @@ TEST(ColourReidPipeline, ATrackThatTurnsIntoSomeoneElseGetsANewKeyAndUser) {
   }
 }
 
+TEST(ColourReidPipeline, GivenBodiesKeepTheirTrackIdsAndAreDecidedAsDetectedOnes) {
+  ForegroundPeopleDetector people;
+  MemoryReidStore store;
+  auto matcher = make_matcher("stripes");
+  ColourReidPipeline reid(people, store, *matcher, quiet_options());
+  const Walk red{{30, 30, 210}, {150, 40, 30}, 8}, green{{40, 190, 40}, {30, 30, 30}, 8};
+  const std::vector<Frame> frames = walks({red, green, red});
+  std::vector<ReidEvent> decisions;
+  std::set<uint64_t> keys;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    // Each walk's frames (after 15 of warm-up: 60 walking, 40 empty) give the drawn person as a body.
+    std::vector<ColourReidPipeline::GivenBody> given;
+    const int walk = (static_cast<int>(i) - 15) / 100, step = (static_cast<int>(i) - 15) % 100;
+    if (i >= 15 && step < 60) {
+      const cv::Rect box(20 + 8 * step, 150, 50, 160);
+      given.push_back({static_cast<uint64_t>(100 + walk), box, cv::Mat(box.size(), CV_8U, cv::Scalar(255))});
+    }
+    const ColourReidResult r = reid.process(frames[i], given);
+    ASSERT_EQ(r.bodies.size(), given.size());
+    for (const ColourBody& b : r.bodies) keys.insert(b.key);
+    for (const ReidEvent& e : r.step.events)
+      if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) decisions.push_back(e);
+  }
+  EXPECT_EQ(keys, (std::set<uint64_t>{100, 101, 102}));
+  ASSERT_EQ(decisions.size(), 3u);
+  EXPECT_EQ(decisions[0].kind, ReidEventKind::kEnrolled);
+  EXPECT_EQ(decisions[1].kind, ReidEventKind::kEnrolled);
+  EXPECT_NE(decisions[1].user, decisions[0].user);
+  EXPECT_EQ(decisions[2].kind, ReidEventKind::kRecognised);
+  EXPECT_EQ(decisions[2].user, decisions[0].user);
+  // A mask that does not fit its box is refused.
+  const cv::Rect box(20, 150, 50, 160);
+  EXPECT_THROW(reid.process(frames[20], {{7, box, cv::Mat(10, 10, CV_8U, cv::Scalar(255))}}), InputError);
+}
+
 TEST(ColourReidPipeline, BadOptionsAndFramesAreRefused) {
   ForegroundPeopleDetector people;
   MemoryReidStore store;

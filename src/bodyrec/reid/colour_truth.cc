@@ -1,5 +1,7 @@
 #include "bodyrec/reid/colour_truth.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include "bodyrec/reid/partial_scan.h"
 
 namespace bodyrec {
@@ -32,6 +34,39 @@ BoxTruth truth_for_boxes(const RecordingMeta& meta, const RgbdFrame& frame, cons
     }
   }
   return out;
+}
+
+std::vector<TrueBody> true_bodies(const RecordingMeta& meta, const RgbdFrame& frame, int min_visible_px) {
+  std::vector<TrueBody> out;
+  if (!frame.truth || frame.depth.empty() || frame.body_index.empty() || frame.color.empty()) return out;
+  const PartialScanExtractor scans(meta);
+  const auto& people = frame.truth->people;
+  for (size_t p = 0; p < people.size(); ++p) {
+    if (people[p].body_index < 0) continue;
+    BodyRef ref;
+    ref.key = people[p].tracking_id;
+    ref.labels = frame.body_index;
+    ref.label = people[p].body_index;
+    const cv::Mat mask = scans.color_mask(frame, ref);
+    if (mask.empty() || cv::countNonZero(mask) < min_visible_px) continue;
+    TrueBody b;
+    b.person = static_cast<int>(p);
+    b.track = people[p].tracking_id;
+    b.box = cv::boundingRect(mask);
+    b.mask = mask(b.box).clone();
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+void ListedDetector::set(const std::vector<cv::Rect>& boxes) {
+  next_.clear();
+  for (const cv::Rect& b : boxes) next_.push_back({Box{double(b.x), double(b.y), double(b.width), double(b.height)}, 1.0});
+}
+
+std::vector<Detection> ListedDetector::detect(const cv::Mat& frame) {
+  (void)frame;
+  return next_;
 }
 
 }  // namespace bodyrec
