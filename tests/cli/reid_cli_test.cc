@@ -6,6 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bodyrec/core/model_files.h"
+#include "bodyrec/reid/learned_matcher.h"
+#include "bodyrec/reid/xqda.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -220,6 +223,26 @@ TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
   expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec.string(), "--bodies-from", "skeleton", "--max-frames",
                                      "5", "--matcher", "lomo-xqda"}),
                         2, "--model");
+}
+
+// The shipped model (models/reid-default.yml.gz) is in the repository: on a fresh clone `reid --matcher
+// default` needs no --model, and the gallery's scans name that model.
+TEST(ReidCli, TheDefaultMatcherUsesTheShippedModelWithNoFlag) {
+  const auto shipped = find_model_file(kShippedReidModel);
+  ASSERT_TRUE(shipped) << "models/" << kShippedReidModel << " is missing";
+  const std::string id = XqdaEnsemble::load(*shipped).id;
+  ASSERT_EQ(id.size(), 8u);
+  TempDir dir;
+  const fs::path& rec = synth_recording({"--people", "2", "--seed", "3", "--frames", "60", "--scenario", "reenter"});
+  const std::string gallery = (dir / "g.db").string();
+  const RunResult r = run_bodyrec({"reid", rec.string(), "--matcher", "default", "--gallery", gallery, "--json", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  EXPECT_EQ(j["matcher"], "default");
+  EXPECT_EQ(j["users"].get<int>(), 2);
+  const RunResult show = run_bodyrec({"gallery", "--gallery", gallery, "show", "1"});
+  ASSERT_EQ(show.exit_code, 0) << show.err;
+  EXPECT_TRUE(contains(show.out, "default/lomo4-gog1-xqda-" + id)) << show.out;
 }
 
 TEST(EvalReidCli, BadInputGivesOneLineErrorsAndExitCodes) {
