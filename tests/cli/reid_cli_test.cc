@@ -225,11 +225,11 @@ TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
                         2, "--model");
 }
 
-// The shipped model (models/reid-default.yml.gz) is in the repository: on a fresh clone `reid --matcher
-// default` needs no --model, and the gallery's scans name that model.
-TEST(ReidCli, TheDefaultMatcherUsesTheShippedModelWithNoFlag) {
+// Once `make reid-model` has made models/reid-default.yml.gz, `reid --matcher default` needs no --model,
+// and the gallery's scans name that model.
+TEST(ReidCli, TheDefaultMatcherUsesTheModelFileWithNoFlag) {
   const auto shipped = find_model_file(kShippedReidModel);
-  ASSERT_TRUE(shipped) << "models/" << kShippedReidModel << " is missing";
+  if (!shipped) GTEST_SKIP() << "no " << kShippedReidModel << ": make it with `make reid-model`";
   const std::string id = XqdaEnsemble::load(*shipped).id;
   ASSERT_EQ(id.size(), 8u);
   TempDir dir;
