@@ -89,6 +89,16 @@ TEST(ColourReidPipeline, OneWalkerIsEnrolledOnceWithASideViewAndLeaves) {
   EXPECT_FALSE(views.count(View::B));
 }
 
+// The decisions of walks red, green, red: two enrolments of two users, then the first one recognised.
+void expect_red_green_red(const std::vector<ReidEvent>& decisions) {
+  ASSERT_EQ(decisions.size(), 3u);
+  EXPECT_EQ(decisions[0].kind, ReidEventKind::kEnrolled);
+  EXPECT_EQ(decisions[1].kind, ReidEventKind::kEnrolled);
+  EXPECT_NE(decisions[1].user, decisions[0].user);
+  EXPECT_EQ(decisions[2].kind, ReidEventKind::kRecognised);
+  EXPECT_EQ(decisions[2].user, decisions[0].user);
+}
+
 TEST(ColourReidPipeline, AReturningWalkerIsRecognisedAndANewOneEnrolled) {
   ForegroundPeopleDetector people;
   MemoryReidStore store;
@@ -99,12 +109,7 @@ TEST(ColourReidPipeline, AReturningWalkerIsRecognisedAndANewOneEnrolled) {
   for (const Frame& f : walks({red, green, red}))
     for (const ReidEvent& e : reid.process(f).step.events)
       if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) decisions.push_back(e);
-  ASSERT_EQ(decisions.size(), 3u);
-  EXPECT_EQ(decisions[0].kind, ReidEventKind::kEnrolled);
-  EXPECT_EQ(decisions[1].kind, ReidEventKind::kEnrolled);
-  EXPECT_NE(decisions[1].user, decisions[0].user);
-  EXPECT_EQ(decisions[2].kind, ReidEventKind::kRecognised);
-  EXPECT_EQ(decisions[2].user, decisions[0].user);
+  expect_red_green_red(decisions);
 }
 
 // One walk whose body changes clothes half-way: what a tracker that jumped to someone else gives.
@@ -176,12 +181,7 @@ TEST(ColourReidPipeline, GivenBodiesKeepTheirTrackIdsAndAreDecidedAsDetectedOnes
       if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) decisions.push_back(e);
   }
   EXPECT_EQ(keys, (std::set<uint64_t>{100, 101, 102}));
-  ASSERT_EQ(decisions.size(), 3u);
-  EXPECT_EQ(decisions[0].kind, ReidEventKind::kEnrolled);
-  EXPECT_EQ(decisions[1].kind, ReidEventKind::kEnrolled);
-  EXPECT_NE(decisions[1].user, decisions[0].user);
-  EXPECT_EQ(decisions[2].kind, ReidEventKind::kRecognised);
-  EXPECT_EQ(decisions[2].user, decisions[0].user);
+  expect_red_green_red(decisions);
   // A mask that does not fit its box is refused.
   const cv::Rect box(20, 150, 50, 160);
   EXPECT_THROW(reid.process(frames[20], {{7, box, cv::Mat(10, 10, CV_8U, cv::Scalar(255))}}), InputError);
