@@ -225,11 +225,11 @@ TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
                         2, "--model");
 }
 
-// Once `make reid-model` has made models/reid-default.yml.gz, `reid --matcher default` needs no --model,
-// and the gallery's scans name that model.
+// With the shipped models/reid-default.yml.gz, `reid --matcher default` needs no --model, and the
+// gallery's scans name that model.
 TEST(ReidCli, TheDefaultMatcherUsesTheModelFileWithNoFlag) {
   const auto shipped = find_model_file(kShippedReidModel);
-  if (!shipped) GTEST_SKIP() << "no " << kShippedReidModel << ": make it with `make reid-model`";
+  ASSERT_TRUE(shipped) << kShippedReidModel << " is shipped in models/";
   const std::string id = XqdaEnsemble::load(*shipped).id;
   ASSERT_EQ(id.size(), 8u);
   TempDir dir;
@@ -242,7 +242,7 @@ TEST(ReidCli, TheDefaultMatcherUsesTheModelFileWithNoFlag) {
   EXPECT_EQ(j["users"].get<int>(), 2);
   const RunResult show = run_bodyrec({"gallery", "--gallery", gallery, "show", "1"});
   ASSERT_EQ(show.exit_code, 0) << show.err;
-  EXPECT_TRUE(contains(show.out, "default/lomo4-gog1-xqda-" + id)) << show.out;
+  EXPECT_TRUE(contains(show.out, "default/lomo4-gog1-cs3-xqda-" + id)) << show.out;
 }
 
 TEST(EvalReidCli, BadInputGivesOneLineErrorsAndExitCodes) {

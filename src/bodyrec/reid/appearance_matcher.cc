@@ -133,8 +133,9 @@ std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const s
     const std::string path =
         !model_path.empty() ? model_path
                             : require_model_file(kShippedReidModel,
-                                                 "make it with `make reid-model`, or train one on your own people "
-                                                 "with bodyrec train-reid (models/README.md)");
+                                                 "it is shipped in models/ (reinstall, or make it again with "
+                                                 "`make reid-model`), or train one on your own people with "
+                                                 "bodyrec train-reid (models/README.md)");
     return make_learned_matcher(LearnedMatcherKind::kDefault, XqdaEnsemble::load(path), path);
   }
   unknown_matcher(name);

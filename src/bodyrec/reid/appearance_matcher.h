@@ -74,7 +74,7 @@ class AppearanceMatcher {
 //      default of `bodyrec reid` (4 KB per scan), threshold set on synthetic recordings.
 //  "kaze": the thesis's KAZE score (kaze_matcher.h), threshold 10.
 // Throws UsageError for an unknown name or a model given to a matcher that takes none, InputError for an
-// unreadable model or one trained on other features (an XQDA model records them, e.g. "lomo4-gog1").
+// unreadable model or one trained on other features (an XQDA model records them, e.g. "lomo4-gog1-cs3").
 std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");
 
 // The same matcher without a model, to be trained (eval reid's splits, train-reid): "default" and

@@ -111,13 +111,17 @@ TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesOrVariantsAreRefused) {
   EXPECT_TRUE(testing::contains(error, "old.yml")) << error;
   EXPECT_TRUE(testing::contains(error, "'lomo3'")) << error;
   EXPECT_TRUE(testing::contains(error, "train-reid")) << error;
-  model_of("lomo4-gog1", "sift", lomo_length()).save(path);
-  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'variant' 'sift'"));
-  model_of("lomo4-gog1", "lomo", 100).save(path);  // variant lomo reads 26960 values
-  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "26960"));
+  // Models of the unsketched features (before the default matcher sketched them) are refused too.
   model_of("lomo4-gog1", "lomo", lomo_length()).save(path);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'lomo4-gog1'"));
+  model_of("lomo4-gog1-cs3", "sift", 8988).save(path);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'variant' 'sift'"));
+  // Variant lomo reads LOMO's 26960 values sketched to a third, block by block: 6827 + 1080 + 1080.
+  model_of("lomo4-gog1-cs3", "lomo", 100).save(path);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "8987"));
+  model_of("lomo4-gog1-cs3", "lomo", 8987).save(path);
   const auto matcher = make_matcher("default", path);
-  EXPECT_EQ(matcher->version(), "lomo4-gog1-xqda-deadbeef");
+  EXPECT_EQ(matcher->version(), "lomo4-gog1-cs3-xqda-deadbeef");
   EXPECT_EQ(matcher->describe({person(2, 1), {}}).size(), 3u);
   EXPECT_DOUBLE_EQ(matcher->threshold(), -2.0);
 }
@@ -133,7 +137,7 @@ TEST(LomoMatcher, DefaultChoosesAVariantAndIsFoundWithoutAFlag) {
   const std::string path = (dir / kShippedReidModel).string();
   matcher->save_model(path);
   const XqdaEnsemble saved = XqdaEnsemble::load(path);
-  EXPECT_EQ(saved.features, "lomo4-gog1");
+  EXPECT_EQ(saved.features, "lomo4-gog1-cs3");
   bool known = false;
   for (const auto& v : default_reid_variants()) known |= v.name == saved.variant;
   EXPECT_TRUE(known) << saved.variant;

@@ -28,9 +28,10 @@ std::vector<XqdaVariant> default_reid_variants();
 // Folds of the default matcher's inner cross-validation (fewer when fewer than 8 people are seen by both
 // cameras: each fold holds out two at least; below 4 the first variant is trained without choosing); its
 // XQDA keeps at most this many dimensions per part (the published recipe keeps every one with
-// eigenvalue > 1).
+// eigenvalue > 1), on features count-sketched to a third of their length, which keeps the model file
+// near 1 MB (learned_matcher.cc).
 inline constexpr int kDefaultSelectionFolds = 4;
-inline constexpr int kDefaultMaxDims = 100;
+inline constexpr int kDefaultMaxDims = 33;
 
 // `model` empty: untrained (kPublished and kDefault then need train() before descriptor(), which throws
 // ProcessingError otherwise). `source` names where the model came from, for errors: InputError when
