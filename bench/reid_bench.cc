@@ -74,6 +74,15 @@ void BM_XqdaEmbed(benchmark::State& state) {
 }
 BENCHMARK(BM_XqdaEmbed)->Arg(100)->Arg(300)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The shipped default model's share of a descriptor, from the features: the GOG centring, the count
+// sketch of every block and the three XQDA embeddings (99 dimensions in all).
+void BM_ShippedDefaultDescriptor(benchmark::State& state) {
+  const auto matcher = bodyrec::make_matcher("default");
+  const std::vector<float> f = matcher->features(body(2, {48, 128}));
+  for (auto _ : state) benchmark::DoNotOptimize(matcher->descriptor(f));
+}
+BENCHMARK(BM_ShippedDefaultDescriptor)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 // One probe descriptor against 800 gallery descriptors (100 users x 8 views): best similarity.
 void BM_MatchGallery800(benchmark::State& state) {
   const int dims = static_cast<int>(state.range(0));
