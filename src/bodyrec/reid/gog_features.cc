@@ -171,23 +171,22 @@ std::vector<float> gog_features(const PersonImage& image, GogColour colour, cons
     const double top = g * step, bottom = top + region_height;
     cv::Mat mu = cv::Mat::zeros(m, 1, CV_64F), second = cv::Mat::zeros(m, m, CV_64F);
     double total = 0;
-    // Weighted first and second moments, accumulated in place: a matrix expression per patch allocated
-    // and freed three matrices each time and cost most of the descriptor's time.
+    // Weighted first and second moments, accumulated in place: a matrix expression per patch would allocate
+    // three matrices each time, most of the descriptor's time. Both triangles are summed, as (w z_a) z_b, so
+    // the result is bit for bit that of the expression (and the models trained on it stay the same).
     std::vector<double> wz(static_cast<size_t>(m));
+    double* mu_p = mu.ptr<double>();
     for (int i = 0; i < patches.rows; ++i) {
       if (centre_y[i] < top || centre_y[i] >= bottom || body[i] < 0.5) continue;
       const double dx = centre_x[i] - o.width / 2.0, w = std::exp(-dx * dx / (2 * sigma * sigma));
       const double* z = patches.ptr<double>(i);
-      double* mu_p = mu.ptr<double>();
       for (int a = 0; a < m; ++a) wz[static_cast<size_t>(a)] = w * z[a], mu_p[a] += wz[static_cast<size_t>(a)];
       for (int a = 0; a < m; ++a) {
         double* row = second.ptr<double>(a);
-        for (int b = a; b < m; ++b) row[b] += wz[static_cast<size_t>(a)] * z[b];
+        for (int b = 0; b < m; ++b) row[b] += wz[static_cast<size_t>(a)] * z[b];
       }
       total += w;
     }
-    for (int a = 0; a < m; ++a)
-      for (int b = 0; b < a; ++b) second.at<double>(a, b) = second.at<double>(b, a);
     if (total <= 0) {
       out.resize(out.size() + static_cast<size_t>(triangle(m + 1)), 0.0f);
       continue;
