@@ -75,8 +75,8 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS)
 	scripts/fuzz --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
-# The default re-identification metric (models/reid-default.yml.gz, models/README.md), trained on VIPeR
-# from the datasets: it is too large to keep in the repository (7.7 MB).
+# The default re-identification metric (models/reid-default.yml.gz, models/README.md) trained again on VIPeR
+# from the datasets, in place of the shipped file.
 VIPER_ARGS = --root $(DATA)/viper --id-regex '^images/(\d{4})' --cam-regex '^images/\d{4}(\d{4})'
 reid-model: program
 	$(BIN) train-reid $(VIPER_ARGS) --out models/reid-default.yml.gz

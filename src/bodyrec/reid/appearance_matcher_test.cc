@@ -111,7 +111,7 @@ TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesOrVariantsAreRefused) {
   EXPECT_TRUE(testing::contains(error, "old.yml")) << error;
   EXPECT_TRUE(testing::contains(error, "'lomo3'")) << error;
   EXPECT_TRUE(testing::contains(error, "train-reid")) << error;
-  // Models of the unsketched features (before the default matcher sketched them) are refused too.
+  // Models of the unsketched features (lomo4-gog1) are refused too.
   model_of("lomo4-gog1", "lomo", lomo_length()).save(path);
   EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'lomo4-gog1'"));
   model_of("lomo4-gog1-cs3", "sift", 8988).save(path);

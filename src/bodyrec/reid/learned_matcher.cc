@@ -24,7 +24,7 @@ constexpr const char* kDefaultFeatures = "lomo4-gog1-cs3";
 
 // The default matcher sketches each block to 1/kSketchDivisor of its length (count_sketch.h) before
 // XQDA, so its model holds that share of the projection rows; with kDefaultMaxDims dimensions per part the
-// shipped file is about 1 MB, not 7.7. Chosen among settings of that size by the inner cross-validation
+// shipped file is about 1 MB (7.7 MB unsketched). Chosen among settings of that size by the inner cross-validation
 // of VIPeR split 0's training people; docs/benchmarks.md gives the figures with and without.
 constexpr int kSketchDivisor = 3;
 constexpr const char* kPublishedVariant = "published";
@@ -56,8 +56,7 @@ size_t block_offset(int block) {
   return static_cast<size_t>(std::accumulate(l.begin(), l.begin() + block, 0));
 }
 
-// One fixed sketch per block (seeded by the block's index), and the lengths and offsets of the blocks
-// after it: what the XQDA parts read.
+// One fixed sketch per block, seeded by the block's index: what the XQDA parts read of it.
 const std::vector<CountSketch>& block_sketches() {
   static const std::vector<CountSketch> sketches = [] {
     std::vector<CountSketch> s;
@@ -72,24 +71,15 @@ const std::vector<CountSketch>& block_sketches() {
 
 int sketched_length(int block) { return block_sketches()[static_cast<size_t>(block)].output_length(); }
 
-size_t sketched_offset(int block) {
-  size_t n = 0;
-  for (int b = 0; b < block; ++b) n += static_cast<size_t>(sketched_length(b));
-  return n;
-}
-
 int part_length(const std::vector<int>& blocks) {
   int n = 0;
   for (int b : blocks) n += sketched_length(b);
   return n;
 }
 
-// The default features (raw block layout) sketched block by block.
-std::vector<float> sketched(const std::vector<float>& f) {
-  std::vector<float> out(sketched_offset(static_cast<int>(default_blocks().size())));
-  for (size_t b = 0; b < default_blocks().size(); ++b)
-    block_sketches()[b].apply(f.data() + block_offset(static_cast<int>(b)), out.data() + sketched_offset(static_cast<int>(b)));
-  return out;
+// Block `block` of the default features `f`, sketched, written at `out` (sketched_length(block) values).
+void sketch_block(const std::vector<float>& f, int block, float* out) {
+  block_sketches()[static_cast<size_t>(block)].apply(f.data() + block_offset(block), out);
 }
 
 bool uses_gog(const XqdaVariant& v) {
@@ -175,7 +165,7 @@ class LomoGogMatcher : public AppearanceMatcher {
     if (model_.empty())
       throw ProcessingError("matcher " + name() + " has no model: train it (bodyrec train-reid) or give --model");
     if (kind_ == LearnedMatcherKind::kPublished) return model_.embed(f);
-    return model_.embed(gather(sketched(prepared(f, model_.feature_mean)), variant()));
+    return model_.embed(gather(prepared(f, model_.feature_mean), variant()));
   }
 
   double similarity(DescriptorView probe, DescriptorView gallery) const override {
@@ -243,13 +233,16 @@ class LomoGogMatcher : public AppearanceMatcher {
     return out;
   }
 
-  // The sketched blocks of each part of `v`, parts in order, from sketched features.
+  // The sketched blocks of each part of `v`, parts in order: what the model's parts read.
   static std::vector<float> gather(const std::vector<float>& f, const XqdaVariant& v) {
-    std::vector<float> out;
+    int total = 0;
+    for (const auto& part : v.parts) total += part_length(part);
+    std::vector<float> out(static_cast<size_t>(total));
+    float* at = out.data();
     for (const auto& part : v.parts)
       for (int b : part) {
-        const auto begin = f.begin() + static_cast<long>(sketched_offset(b));
-        out.insert(out.end(), begin, begin + sketched_length(b));
+        sketch_block(f, b, at);
+        at += sketched_length(b);
       }
     return out;
   }
@@ -267,16 +260,13 @@ class LomoGogMatcher : public AppearanceMatcher {
     for (size_t i = 0; i < gog_n; ++i) mean.at<float>(0, static_cast<int>(i)) = static_cast<float>(sum[i] / samples.size());
     std::vector<std::vector<float>> ready;
     std::vector<XqdaLabel> labels;
-    for (const auto& s : samples)
-      ready.push_back(sketched(prepared(*s.feature, mean))), labels.push_back({s.identity, s.camera});
+    for (const auto& s : samples) ready.push_back(prepared(*s.feature, mean)), labels.push_back({s.identity, s.camera});
     // One Gram matrix per sketched block, shared by every variant and fold.
     std::vector<cv::Mat> grams;
     for (size_t b = 0; b < default_blocks().size(); ++b) {
       const int len = sketched_length(static_cast<int>(b));
       cv::Mat a(static_cast<int>(ready.size()), len, CV_32F);
-      for (size_t i = 0; i < ready.size(); ++i)
-        std::copy_n(ready[i].begin() + static_cast<long>(sketched_offset(static_cast<int>(b))), len,
-                    a.ptr<float>(static_cast<int>(i)));
+      for (size_t i = 0; i < ready.size(); ++i) sketch_block(ready[i], static_cast<int>(b), a.ptr<float>(static_cast<int>(i)));
       grams.push_back(gram_matrix(a));
     }
     XqdaOptions options;
