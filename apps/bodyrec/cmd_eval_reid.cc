@@ -32,8 +32,8 @@ struct EvalReidCommand {
     if (!resize.empty()) eval.resize = parse_image_size(resize, "--resize");
     eval.check();
     const bool learn = model.empty() && make_untrained_matcher(matcher)->learns() && eval.train_ids != 0;
-    if (model.empty() && !learn && matcher == "lomo-xqda")
-      throw UsageError("matcher lomo-xqda learns: give --train-ids > 0 or --model");
+    if (model.empty() && !learn && (matcher == "lomo-xqda" || matcher == "default-full"))
+      throw UsageError("matcher " + matcher + " learns: give --train-ids > 0 or --model");
     if (!learn) (void)make_matcher(matcher, model);
     const ReidDataset data = scan_reid_dataset(dataset.root, dataset.id_regex, dataset.cam_regex);
     eval.learn = learn;  // a given or shipped model is used as is in every split
@@ -113,7 +113,7 @@ void add(CLI::App& eval) {
       "gallery is every other-camera image not used for training (other identities are distractors). Without "
       "--model a learning matcher is trained on each split's training identities only. Matchers: default = LOMO "
       "and GOG variants with XQDA, the variant chosen by cross-validation inside each split's training "
-      "identities; lomo-xqda = the published LOMO + XQDA (Liao et al. 2015); lomo = LOMO with Euclidean "
+      "identities; default-full = the same on the unsketched features (a model too large to ship); lomo-xqda = the published LOMO + XQDA (Liao et al. 2015); lomo = LOMO with Euclidean "
       "distance, nothing learned; kaze = the thesis's KAZE score.\n"
       "Example: bodyrec eval reid --root ../shared/datasets/viper --id-regex '^images/(\\d{4})' "
       "--cam-regex '^images/\\d{4}(\\d{4})' --train-ids 316 --json");
@@ -124,9 +124,9 @@ void add(CLI::App& eval) {
   sub->add_option("--splits", command->eval.splits, "Random splits; figures are their means")->check(positive())
       ->capture_default_str();
   sub->add_option("--seed", command->eval.seed, "Seed of the splits")->capture_default_str();
-  sub->add_option("--matcher", command->matcher, "default | lomo-xqda | lomo | stripes | kaze")->capture_default_str();
+  sub->add_option("--matcher", command->matcher, "default | default-full | lomo-xqda | lomo | stripes | kaze")->capture_default_str();
   sub->add_option("--model", command->model,
-                  "Model from `bodyrec train-reid` for default or lomo-xqda, used as is in every split (not "
+                  "Model from `bodyrec train-reid` for default, default-full or lomo-xqda, used as is in every split (not "
                   "retrained); with --train-ids 0 and no --model, default uses the shipped model");
   sub->add_flag("--swap-cameras", command->eval.swap_cameras,
                 "Probes from the second camera, gallery from the first (the other direction)");

@@ -16,11 +16,14 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option, boo
   sub.add_option("--matcher", o.matcher,
                  "Appearance matcher: " + names +
                      ". stripes (default): colour histograms in bands of height above the floor, no model needed; "
-                     "default: LOMO/GOG + XQDA with the shipped model (models/README.md) or --model; lomo-xqda: "
-                     "the published LOMO + XQDA, needs --model (bodyrec train-reid); kaze: the thesis's score")
+                     "default: LOMO/GOG + XQDA with the shipped model (models/README.md) or --model; default-full: the "
+                     "same on the unsketched features, needs --model (bodyrec train-reid --matcher default-full); "
+                     "lomo-xqda: the published LOMO + XQDA, needs --model (bodyrec train-reid); kaze: the thesis's "
+                     "score")
       ->capture_default_str();
   sub.add_option("--model", o.model,
-                 "Learned model for --matcher default (instead of the shipped one) or lomo-xqda (bodyrec train-reid --out)");
+                 "Learned model for --matcher default (instead of the shipped one), default-full or lomo-xqda (bodyrec "
+                 "train-reid --out)");
   sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery");
   sub.add_option("--prune-unseen-for", o.prune_unseen_for,
                  "Before the run, forget users unseen for this long (30d, 12h, 45m...)");

@@ -197,6 +197,28 @@ TEST(TrainReidCli, PublishedRecipeModelsAndWrongMatchers) {
   expect_one_line_error(run_bodyrec(eval_args({"--matcher", "lomo-xqda", "--train-ids", "0"})), 2, "--model");
 }
 
+// default-full (the default matcher's variants on the unsketched features) ships no model: train-reid
+// makes one, eval reid and reid use it with --model, and a default model is not one of its.
+TEST(TrainReidCli, TheFullDefaultMatcherTrainsAndNeedsItsModel) {
+  TempDir dir;
+  const std::string model = (dir / "full.yml.gz").string();
+  std::vector<std::string> train = {"train-reid", "--matcher", "default-full", "--out", model, "--root",
+                                    person_set().string(), "--id-regex", "/p(\\d+)\\.png$", "--cam-regex", "^cam(\\d)/"};
+  const RunResult t = run_bodyrec(train);
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_TRUE(contains(t.err, "on the full features")) << t.err;
+  const RunResult r = run_bodyrec(eval_args({"--matcher", "default-full", "--model", model, "--splits", "1", "--train-ids", "0"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(last_json_line(r.out)["rank1"].get<double>(), 1.0);
+  EXPECT_TRUE(contains(r.out, "on the full features")) << r.out;
+  expect_one_line_error(run_bodyrec(eval_args({"--matcher", "default", "--model", model})), 3, "'lomo4-gog1'");
+  expect_one_line_error(run_bodyrec(eval_args({"--matcher", "default-full", "--train-ids", "0"})), 2, "--model");
+  const fs::path& rec = synth_recording({"--people", "2", "--seed", "3", "--frames", "60", "--scenario", "reenter"});
+  expect_one_line_error(run_bodyrec({"reid", rec.string(), "--matcher", "default-full", "--gallery",
+                                     (dir / "g.db").string()}),
+                        2, "--model");
+}
+
 // The default matcher's model is found without a flag ($BODYREC_MODELS first, then the shipped models/).
 TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
   TempDir dir;

@@ -98,7 +98,7 @@ void AppearanceMatcher::save_model(const std::string& path) const {
   throw UsageError("matcher " + name() + " has no learned model to write to " + path);
 }
 
-std::vector<std::string> matcher_names() { return {"default", "lomo-xqda", "lomo", "stripes", "kaze"}; }
+std::vector<std::string> matcher_names() { return {"default", "default-full", "lomo-xqda", "lomo", "stripes", "kaze"}; }
 
 namespace {
 
@@ -116,6 +116,7 @@ std::unique_ptr<AppearanceMatcher> make_untrained_matcher(const std::string& nam
   if (name == "lomo") return make_learned_matcher(LearnedMatcherKind::kUnlearned);
   if (name == "lomo-xqda") return make_learned_matcher(LearnedMatcherKind::kPublished);
   if (name == "default") return make_learned_matcher(LearnedMatcherKind::kDefault);
+  if (name == "default-full") return make_learned_matcher(LearnedMatcherKind::kDefaultFull);
   unknown_matcher(name);
 }
 
@@ -128,6 +129,11 @@ std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const s
     if (model_path.empty())
       throw UsageError("matcher lomo-xqda needs --model (train one with bodyrec train-reid --matcher lomo-xqda)");
     return make_learned_matcher(LearnedMatcherKind::kPublished, XqdaEnsemble::load(model_path), model_path);
+  }
+  if (name == "default-full") {
+    if (model_path.empty())
+      throw UsageError("matcher default-full needs --model (train one with bodyrec train-reid --matcher default-full)");
+    return make_learned_matcher(LearnedMatcherKind::kDefaultFull, XqdaEnsemble::load(model_path), model_path);
   }
   if (name == "default") {
     const std::string path =

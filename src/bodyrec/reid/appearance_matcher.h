@@ -68,6 +68,8 @@ class AppearanceMatcher {
 //      found by find_model_file; InputError saying how to get one when there is none).
 //      similarity = -squared distance of the embeddings, threshold calibrated on held-out training
 //      people (train_xqda_ensemble).
+//  "default-full": the same on the full (unsketched) features, up to 100 dimensions per part; nothing
+//      shipped (its model is about 7.7 MB): needs model_path (else UsageError).
 //  "lomo-xqda": the published LOMO + XQDA (Liao et al. 2015); needs model_path (else UsageError).
 //  "lomo": mirror-averaged LOMO, similarity = -squared Euclidean distance, threshold measured on VIPeR.
 //  "stripes": compact colour histograms in horizontal stripes (stripe_features.h), no model; the online
@@ -77,8 +79,9 @@ class AppearanceMatcher {
 // unreadable model or one trained on other features (an XQDA model records them, e.g. "lomo4-gog1-cs3").
 std::unique_ptr<AppearanceMatcher> make_matcher(const std::string& name, const std::string& model_path = "");
 
-// The same matcher without a model, to be trained (eval reid's splits, train-reid): "default" and
-// "lomo-xqda" then need train() before descriptor(); the others are as make_matcher makes them.
+// The same matcher without a model, to be trained (eval reid's splits, train-reid): "default",
+// "default-full" and "lomo-xqda" then need train() before descriptor(); the others are as make_matcher
+// makes them.
 std::unique_ptr<AppearanceMatcher> make_untrained_matcher(const std::string& name);
 
 // The names make_matcher accepts, for --help and errors.

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
@@ -111,9 +113,16 @@ TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesOrVariantsAreRefused) {
   EXPECT_TRUE(testing::contains(error, "old.yml")) << error;
   EXPECT_TRUE(testing::contains(error, "'lomo3'")) << error;
   EXPECT_TRUE(testing::contains(error, "train-reid")) << error;
-  // Models of the unsketched features (lomo4-gog1) are refused too.
+  // Models of the unsketched features (lomo4-gog1) are default-full's, refused by default and the other way
+  // round; default-full reads LOMO's 26960 values as they are.
   model_of("lomo4-gog1", "lomo", lomo_length()).save(path);
   EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'lomo4-gog1'"));
+  const auto full = make_matcher("default-full", path);
+  EXPECT_EQ(full->version(), "lomo4-gog1-xqda-deadbeef");
+  EXPECT_EQ(full->describe({person(2, 1), {}}).size(), 3u);
+  model_of("lomo4-gog1", "lomo", 8987).save(path);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default-full", path); }), "26960"));
+  EXPECT_THROW(make_matcher("default-full"), UsageError);  // nothing shipped: a model is needed
   model_of("lomo4-gog1-cs3", "sift", 8988).save(path);
   EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default", path); }), "'variant' 'sift'"));
   // Variant lomo reads LOMO's 26960 values sketched to a third, block by block: 6827 + 1080 + 1080.
@@ -124,6 +133,34 @@ TEST(LomoMatcher, ModelsTrainedOnOtherFeaturesOrVariantsAreRefused) {
   EXPECT_EQ(matcher->version(), "lomo4-gog1-cs3-xqda-deadbeef");
   EXPECT_EQ(matcher->describe({person(2, 1), {}}).size(), 3u);
   EXPECT_DOUBLE_EQ(matcher->threshold(), -2.0);
+  EXPECT_TRUE(testing::contains(testing::input_error([&] { make_matcher("default-full", path); }), "'lomo4-gog1-cs3'"));
+}
+
+// default-full trains the same variants on the unsketched blocks: its parts read each block whole.
+TEST(LomoMatcher, DefaultFullTrainsOnTheUnsketchedFeatures) {
+  auto matcher = make_untrained_matcher("default-full");
+  EXPECT_EQ(matcher->name(), "default-full");
+  const People p = people_for(*matcher, 8);
+  ASSERT_EQ(p.features[0], make_untrained_matcher("default")->features({person(0, 0), {}}));  // same features
+  matcher->train(p.samples);
+  EXPECT_TRUE(testing::contains(matcher->summary(), "on the full features")) << matcher->summary();
+  testing::TempDir dir;
+  const std::string path = (dir / "full.yml.gz").string();
+  matcher->save_model(path);
+  const XqdaEnsemble saved = XqdaEnsemble::load(path);
+  EXPECT_EQ(saved.features, "lomo4-gog1");
+  int inputs = 0;
+  for (const auto& part : saved.parts) inputs += part.input_length();
+  // Every part reads whole blocks (LOMO's 26960 values, GOG's 3 x 7567 + 4921), never a sketched third.
+  const std::map<std::string, int> whole = {{"lomo", 26960},
+                                            {"lomo-mirror-2c", 2 * 26960},
+                                            {"gog", 27622},
+                                            {"lomo-mirror-2c+gog", 2 * 26960 + 27622}};
+  ASSERT_TRUE(whole.count(saved.variant)) << saved.variant;
+  EXPECT_EQ(inputs, whole.at(saved.variant));
+  const auto back = make_matcher("default-full", path);
+  EXPECT_EQ(back->version(), matcher->version());
+  EXPECT_EQ(back->describe({person(5, 1), {}}), matcher->descriptor(p.features[11]));
 }
 
 // The default matcher picks its variant on the training people, saves it, and the saved model is found

@@ -17,10 +17,11 @@ namespace {
 // Feature formats (a model records the one it was trained on and is refused with another).
 // lomo4: LOMO as LOMO.m computes it (three unit-norm parts); lomo4m: the same mirror-averaged;
 // lomo4-gog1-cs3: the default matcher's eight blocks (default_reid_variants()), each count-sketched to a
-// third of its length.
+// third of its length; lomo4-gog1: the same blocks as they are (default-full).
 constexpr const char* kPublishedFeatures = "lomo4";
 constexpr const char* kUnlearnedFeatures = "lomo4m";
 constexpr const char* kDefaultFeatures = "lomo4-gog1-cs3";
+constexpr const char* kFullFeatures = "lomo4-gog1";
 
 // The default matcher sketches each block to 1/kSketchDivisor of its length (count_sketch.h) before
 // XQDA, so its model holds that share of the projection rows; with kDefaultMaxDims dimensions per part the
@@ -69,17 +70,25 @@ const std::vector<CountSketch>& block_sketches() {
   return sketches;
 }
 
-int sketched_length(int block) { return block_sketches()[static_cast<size_t>(block)].output_length(); }
+// How the XQDA parts read each block: sketched (default) or as it is (default-full).
+enum class BlockReading { kSketched, kFull };
 
-int part_length(const std::vector<int>& blocks) {
+int read_length(int block, BlockReading reading) {
+  return reading == BlockReading::kSketched ? block_sketches()[static_cast<size_t>(block)].output_length()
+                                            : default_blocks()[static_cast<size_t>(block)];
+}
+
+int part_length(const std::vector<int>& blocks, BlockReading reading) {
   int n = 0;
-  for (int b : blocks) n += sketched_length(b);
+  for (int b : blocks) n += read_length(b, reading);
   return n;
 }
 
-// Block `block` of the default features `f`, sketched, written at `out` (sketched_length(block) values).
-void sketch_block(const std::vector<float>& f, int block, float* out) {
-  block_sketches()[static_cast<size_t>(block)].apply(f.data() + block_offset(block), out);
+// Block `block` of the default features `f` as the parts read it, written at `out` (read_length values).
+void read_block(const std::vector<float>& f, int block, BlockReading reading, float* out) {
+  const float* in = f.data() + block_offset(block);
+  if (reading == BlockReading::kSketched) block_sketches()[static_cast<size_t>(block)].apply(in, out);
+  else std::copy(in, in + default_blocks()[static_cast<size_t>(block)], out);
 }
 
 bool uses_gog(const XqdaVariant& v) {
@@ -101,6 +110,7 @@ class LomoGogMatcher : public AppearanceMatcher {
     switch (kind_) {
       case LearnedMatcherKind::kPublished: return "lomo-xqda";
       case LearnedMatcherKind::kDefault: return "default";
+      case LearnedMatcherKind::kDefaultFull: return "default-full";
       case LearnedMatcherKind::kUnlearned: break;
     }
     return "lomo";
@@ -114,7 +124,7 @@ class LomoGogMatcher : public AppearanceMatcher {
       s << "LOMO features (mirror-averaged), unlearned: similarity = -squared Euclidean distance, same person above -"
         << kLomoThreshold;
     else if (model_.empty())
-      s << (kind_ == LearnedMatcherKind::kDefault ? "LOMO + GOG variants + XQDA" : "LOMO + XQDA") << ", not trained";
+      s << (kind_ == LearnedMatcherKind::kPublished ? "LOMO + XQDA" : "LOMO + GOG variants + XQDA") << ", not trained";
     else if (kind_ == LearnedMatcherKind::kPublished)
       s << "LOMO + XQDA as published (Liao et al. 2015; " << model_.embed_length() << " dims, model " << model_.id
         << "): similarity = -squared distance, same person above " << threshold();
@@ -165,7 +175,7 @@ class LomoGogMatcher : public AppearanceMatcher {
     if (model_.empty())
       throw ProcessingError("matcher " + name() + " has no model: train it (bodyrec train-reid) or give --model");
     if (kind_ == LearnedMatcherKind::kPublished) return model_.embed(f);
-    return model_.embed(gather(prepared(f, model_.feature_mean), variant()));
+    return model_.embed(gather(prepared(f, model_.feature_mean), variant(), reading()));
   }
 
   double similarity(DescriptorView probe, DescriptorView gallery) const override {
@@ -182,9 +192,14 @@ class LomoGogMatcher : public AppearanceMatcher {
     switch (kind_) {
       case LearnedMatcherKind::kPublished: return kPublishedFeatures;
       case LearnedMatcherKind::kDefault: return kDefaultFeatures;
+      case LearnedMatcherKind::kDefaultFull: return kFullFeatures;
       case LearnedMatcherKind::kUnlearned: break;
     }
     return kUnlearnedFeatures;
+  }
+
+  BlockReading reading() const {
+    return kind_ == LearnedMatcherKind::kDefaultFull ? BlockReading::kFull : BlockReading::kSketched;
   }
 
   const XqdaVariant& variant() const {
@@ -197,7 +212,8 @@ class LomoGogMatcher : public AppearanceMatcher {
   std::string variant_description() const {
     const XqdaVariant& v = variant();
     std::ostringstream s;
-    s << v.parts.size() << (v.parts.size() == 1 ? " XQDA model" : " XQDA models fused");
+    s << v.parts.size() << (v.parts.size() == 1 ? " XQDA model" : " XQDA models fused")
+      << (reading() == BlockReading::kSketched ? " on count-sketched features" : " on the full features");
     return s.str();
   }
 
@@ -233,16 +249,16 @@ class LomoGogMatcher : public AppearanceMatcher {
     return out;
   }
 
-  // The sketched blocks of each part of `v`, parts in order: what the model's parts read.
-  static std::vector<float> gather(const std::vector<float>& f, const XqdaVariant& v) {
+  // The blocks of each part of `v` as the parts read them, parts in order: what the model's parts read.
+  static std::vector<float> gather(const std::vector<float>& f, const XqdaVariant& v, BlockReading reading) {
     int total = 0;
-    for (const auto& part : v.parts) total += part_length(part);
+    for (const auto& part : v.parts) total += part_length(part, reading);
     std::vector<float> out(static_cast<size_t>(total));
     float* at = out.data();
     for (const auto& part : v.parts)
       for (int b : part) {
-        sketch_block(f, b, at);
-        at += sketched_length(b);
+        read_block(f, b, reading, at);
+        at += read_length(b, reading);
       }
     return out;
   }
@@ -261,16 +277,17 @@ class LomoGogMatcher : public AppearanceMatcher {
     std::vector<std::vector<float>> ready;
     std::vector<XqdaLabel> labels;
     for (const auto& s : samples) ready.push_back(prepared(*s.feature, mean)), labels.push_back({s.identity, s.camera});
-    // One Gram matrix per sketched block, shared by every variant and fold.
+    // One Gram matrix per block as the parts read it, shared by every variant and fold.
     std::vector<cv::Mat> grams;
     for (size_t b = 0; b < default_blocks().size(); ++b) {
-      const int len = sketched_length(static_cast<int>(b));
+      const int len = read_length(static_cast<int>(b), reading());
       cv::Mat a(static_cast<int>(ready.size()), len, CV_32F);
-      for (size_t i = 0; i < ready.size(); ++i) sketch_block(ready[i], static_cast<int>(b), a.ptr<float>(static_cast<int>(i)));
+      for (size_t i = 0; i < ready.size(); ++i)
+        read_block(ready[i], static_cast<int>(b), reading(), a.ptr<float>(static_cast<int>(i)));
       grams.push_back(gram_matrix(a));
     }
     XqdaOptions options;
-    options.max_dims = kDefaultMaxDims;
+    options.max_dims = reading() == BlockReading::kSketched ? kDefaultMaxDims : kFullMaxDims;
     const std::vector<XqdaVariant> variants = default_reid_variants();
     // Each fold holds out at least two people; with fewer than four seen by both cameras there is
     // nothing to compare on, and the first variant (the published recipe) is trained.
@@ -282,13 +299,13 @@ class LomoGogMatcher : public AppearanceMatcher {
     selection_folds_ = folds;
     const XqdaVariant& chosen = variants[static_cast<size_t>(selection_.chosen)];
     std::vector<std::vector<float>> gathered;
-    for (const auto& r : ready) gathered.push_back(gather(r, chosen));
+    for (const auto& r : ready) gathered.push_back(gather(r, chosen, reading()));
     std::vector<XqdaSample> parts_samples;
     for (size_t i = 0; i < samples.size(); ++i) parts_samples.push_back({&gathered[i], samples[i].identity, samples[i].camera});
     std::vector<int> lengths;
-    for (const auto& part : chosen.parts) lengths.push_back(part_length(part));
+    for (const auto& part : chosen.parts) lengths.push_back(part_length(part, reading()));
     model_ = train_xqda_ensemble(parts_samples, lengths, options);
-    model_.features = kDefaultFeatures;
+    model_.features = feature_format();
     model_.variant = chosen.name;
     if (uses_gog(chosen)) model_.feature_mean = mean;
   }
@@ -312,7 +329,7 @@ class LomoGogMatcher : public AppearanceMatcher {
       throw InputError(source + ": variant " + model_.variant + " has " + std::to_string(it->parts.size()) +
                        " parts, the model " + std::to_string(model_.parts.size()));
     for (size_t k = 0; k < it->parts.size(); ++k) {
-      const int n = part_length(it->parts[k]);
+      const int n = part_length(it->parts[k], reading());
       if (model_.parts[k].input_length() != n)
         throw InputError(source + ": part " + std::to_string(k) + " of the model expects " +
                          std::to_string(model_.parts[k].input_length()) + " inputs, the features give " + std::to_string(n));

@@ -2,6 +2,9 @@
 //  kPublished ("lomo-xqda"): the published recipe of Liao et al. 2015, LOMO (Retinex colours) + one XQDA.
 //  kDefault ("default"): variants of LOMO and GOG features with XQDA, fused; train() chooses the variant
 //      by cross-validation over the training people only (xqda_selection.h), then trains it on all of them.
+//  kDefaultFull ("default-full"): the same on the full features (no count sketch) with up to 100 dimensions
+//      per part: better on VIPeR (docs/benchmarks.md), but its model is about 7.7 MB, too large to ship:
+//      train-reid makes it.
 //  kUnlearned ("lomo"): mirror-averaged LOMO, squared Euclidean distance, no model.
 #pragma once
 
@@ -15,7 +18,7 @@
 
 namespace bodyrec {
 
-enum class LearnedMatcherKind { kPublished, kDefault, kUnlearned };
+enum class LearnedMatcherKind { kPublished, kDefault, kDefaultFull, kUnlearned };
 
 // The file name under which the default matcher's model is shipped (models/README.md; model_files.h).
 inline constexpr const char* kShippedReidModel = "reid-default.yml.gz";
@@ -32,6 +35,7 @@ std::vector<XqdaVariant> default_reid_variants();
 // near 1 MB (learned_matcher.cc).
 inline constexpr int kDefaultSelectionFolds = 4;
 inline constexpr int kDefaultMaxDims = 33;
+inline constexpr int kFullMaxDims = 100;  // default-full: the same variants on the unsketched features
 
 // `model` empty: untrained (kPublished and kDefault then need train() before descriptor(), which throws
 // ProcessingError otherwise). `source` names where the model came from, for errors: InputError when
