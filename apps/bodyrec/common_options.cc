@@ -3,6 +3,7 @@
 #include "bodyrec/core/error.h"
 #include "bodyrec/detection/dpm_people_detector.h"
 #include "bodyrec/detection/fhog_detector.h"
+#include "bodyrec/detection/foreground_detector.h"
 #include "bodyrec/detection/hog_people_detector.h"
 #include "option_checks.h"
 
@@ -33,9 +34,11 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
                  "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
                  "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
                  "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
+                 "'foreground' (one static camera's video, camera or image sequence: people as foreground blobs of "
+                 "background subtraction, a few ms per frame; who stands still for long fades into the background), "
                  "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
                  "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)")
-      ->check(one_of({"auto", "default", "photo", "thesis", "opencv"}))
+      ->check(one_of({"auto", "default", "photo", "foreground", "thesis", "opencv"}))
       ->capture_default_str();
   sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
@@ -94,13 +97,18 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
       hog |= given(opt);
     preset = consecutive_frames || hog ? "default" : "photo";
   }
-  if (preset == "photo") {
-    // The DPM has none of HOG's knobs and no motion regions: refuse them rather than ignore them.
+  if (preset == "photo" || preset == "foreground") {
+    // The DPM and background subtraction have none of HOG's knobs: refuse them rather than ignore them.
+    const std::string which = preset == "photo" ? "the DPM detector" : "background subtraction";
     for (const CLI::Option* opt : {o.o_hog_model, o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize,
                                    o.o_levels, o.o_adapt, o.o_motion_margin})
-      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset photo uses the DPM detector");
-    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset photo uses the DPM detector");
-    if (o.motion == "on") throw UsageError("--motion on needs a HOG preset; --preset photo searches the whole image");
+      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset " + preset + " uses " + which);
+    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset " + preset + " uses " + which);
+    if (o.motion == "on") throw UsageError("--motion on needs a HOG preset; --preset " + preset + " uses " + which);
+  }
+  // Asked for by name, so an image folder is taken as one static camera's frames in order.
+  if (preset == "foreground") return std::make_unique<ForegroundPeopleDetector>(ForegroundOptions{});
+  if (preset == "photo") {
     DpmOptions d = dpm_photo_preset();
     d.nms_iou = o.nms_iou;
     return std::make_unique<DpmPeopleDetector>(d);

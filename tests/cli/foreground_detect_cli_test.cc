@@ -1,0 +1,64 @@
+// `--preset foreground` (background subtraction) in the detection and tracking commands: a static
+// camera's image sequence with one person-like figure walking right, 5 pixels per frame.
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "test_support.h"
+
+namespace bodyrec::testing {
+namespace {
+
+// 40 frames of 320x240: a plain background and a 30x90 figure (red top, blue legs) whose left edge is at
+// 20 + 5 f on frame f, rows 100-189.
+std::filesystem::path walking_figure(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  for (int f = 0; f < 40; ++f) {
+    cv::Mat image(240, 320, CV_8UC3, cv::Scalar(140, 150, 150));
+    cv::rectangle(image, cv::Rect(20 + 5 * f, 100, 30, 40), cv::Scalar(40, 40, 200), cv::FILLED);
+    cv::rectangle(image, cv::Rect(20 + 5 * f, 140, 30, 50), cv::Scalar(120, 30, 30), cv::FILLED);
+    char name[16];
+    std::snprintf(name, sizeof name, "%03d.png", f);
+    cv::imwrite((dir / name).string(), image);
+  }
+  return dir;
+}
+
+TEST(ForegroundDetectCli, TracksTheOneMovingFigureOfAStaticCamera) {
+  TempDir dir;
+  const std::string frames = walking_figure(dir / "frames").string();
+  const RunResult r = run_bodyrec({"track", frames, "--preset", "foreground", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 40u);
+  std::set<int> ids;
+  for (const std::string& line : lines) {
+    const nlohmann::json frame = nlohmann::json::parse(line);
+    for (const auto& t : frame["tracks"]) ids.insert(t["id"].get<int>());
+  }
+  EXPECT_EQ(ids, std::set<int>{1});  // one person, one track
+  const nlohmann::json last = nlohmann::json::parse(lines.back())["tracks"];
+  ASSERT_EQ(last.size(), 1u);
+  const nlohmann::json box = last[0]["box"];  // the figure is at 215, 100, 30 x 90
+  EXPECT_NEAR(box[0].get<double>(), 215, 3);
+  EXPECT_NEAR(box[1].get<double>(), 100, 3);
+  EXPECT_NEAR(box[2].get<double>(), 30, 3);
+  EXPECT_NEAR(box[3].get<double>(), 90, 3);
+}
+
+TEST(ForegroundDetectCli, HogOptionsAreRefused) {
+  TempDir dir;
+  const std::string frames = walking_figure(dir / "frames").string();
+  expect_one_line_error(run_bodyrec({"detect", frames, "--preset", "foreground", "--hit-threshold", "0.5", "-q"}), 2,
+                        "--hit-threshold");
+  expect_one_line_error(run_bodyrec({"track", frames, "--preset", "foreground", "--roi", "0", "0", "50", "50", "-q"}), 2,
+                        "--roi");
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
