@@ -1,11 +1,16 @@
 // `bodyrec eval reid-stream REC`: runs online re-identification over a recording with truth (bodyrec
-// synth) on a fresh store in memory (or --gallery) and scores it: per-frame identity accuracy, splits, merges
+// synth), or over a video or image sequence with a ground-truth file of boxes and ids (--gt), on a fresh
+// store in memory (or --gallery) and scores it: per-frame identity accuracy, splits, merges
 // (eval/reid_stream_metrics.h), ms per frame.
+#include <algorithm>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <tuple>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/reid_stream_metrics.h"
+#include "bodyrec/io/ground_truth.h"
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/reid/colour_truth.h"
@@ -18,18 +23,48 @@
 namespace bodyrec::cli {
 namespace {
 
+// Each body's ground-truth box (index into `truth`, -1 none): pairs of IoU >= min_iou, best first, each box
+// and each truth box used once.
+std::vector<int> match_truth(const std::vector<cv::Rect>& bodies, const std::vector<LabelledBox>& truth, double min_iou) {
+  std::vector<std::tuple<double, size_t, size_t>> pairs;
+  for (size_t b = 0; b < bodies.size(); ++b)
+    for (size_t t = 0; t < truth.size(); ++t) {
+      const double overlap = iou(Box(bodies[b]), truth[t].box);
+      if (overlap >= min_iou) pairs.emplace_back(overlap, b, t);
+    }
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+  std::vector<int> out(bodies.size(), -1);
+  std::vector<bool> used(truth.size(), false);
+  for (const auto& [overlap, b, t] : pairs)
+    if (out[b] < 0 && !used[t]) out[b] = static_cast<int>(t), used[t] = true;
+  return out;
+}
+
 struct EvalReidStreamCommand {
-  std::string input, jsonl, gallery;
+  std::string input, jsonl, gallery, gt;
+  double gt_iou = 0.5;
   ReidCliOptions options;
   bool json = false;
   ReidInput::TrueBodies true_bodies = ReidInput::TrueBodies::kNone;
 
   void run() const {
     ReidInput in = open_reid_input(input, options);  // before any file is created
-    if (!in.source)
+    if (!gt.empty() && in.source) throw UsageError("--gt is for a video or images: a recording has its own truth");
+    if (!in.source && gt.empty())
       throw InputError(input + ": eval reid-stream needs a recording with truth (bodyrec synth; --colour-only for its "
-                               "colour alone)");
+                               "colour alone) or, for a video or images, --gt with their people's boxes and ids");
+    if (true_bodies != ReidInput::TrueBodies::kNone && !in.source)
+      throw UsageError("--true-bodies is for --colour-only on a recording");
     if (true_bodies != ReidInput::TrueBodies::kNone && !in.colour) throw UsageError("--true-bodies is for --colour-only");
+    // A ground-truth file: each body is the person whose box it overlaps (IoU >= --gt-iou, one to one).
+    std::map<int, std::vector<LabelledBox>> truth_by_frame;
+    int truth_frames = 0;
+    if (!gt.empty()) {
+      const GroundTruth truth = read_ground_truth(gt);
+      truth_frames = truth.frame_count;
+      for (const LabelledBox& b : truth.boxes)
+        if (!b.ignore && b.id >= 0) truth_by_frame[b.frame].push_back(b);
+    }
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     // A fresh store in memory unless a gallery is named.
@@ -53,6 +88,18 @@ struct EvalReidStreamCommand {
     double ms = 0, last_time = 0;
     const int frames = run_reid(in, options, *store, [&](const ReidFrame& f) {
       if (f.truth_visible > 0) visible += f.truth_visible;
+      if (!gt.empty() && f.frame.index >= 0 && f.frame.index < truth_frames) {
+        const auto it = truth_by_frame.find(f.frame.index);
+        any_truth |= it != truth_by_frame.end();
+        const std::vector<LabelledBox> none;
+        const std::vector<LabelledBox>& people = it == truth_by_frame.end() ? none : it->second;
+        visible += static_cast<int>(people.size());
+        std::vector<cv::Rect> boxes;
+        for (const ReidIdentity& id : f.step.identities) boxes.push_back(id.box);
+        const std::vector<int> match = match_truth(boxes, people, gt_iou);
+        for (size_t i = 0; i < match.size(); ++i)
+          if (match[i] >= 0) counter.add(people[static_cast<size_t>(match[i])].id, f.bodies[i].key, f.step.identities[i].user);
+      }
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
         last_time = f.frame.time_s;
@@ -87,7 +134,9 @@ struct EvalReidStreamCommand {
       for (const ReidEvent& e : f.step.events)
         if (e.kind == ReidEventKind::kEnrolled || e.kind == ReidEventKind::kRecognised) counter.assign(e.track, e.user);
     }).frames;
-    if (!any_truth) throw InputError(input + ": the recording has no truth stream (make one with bodyrec synth)");
+    if (!any_truth)
+      throw InputError(gt.empty() ? input + ": the recording has no truth stream (make one with bodyrec synth)"
+                                  : gt + ": no ground truth for the frames of " + input);
     const ReidStreamScore s = counter.score();
     const double per_frame = frames ? ms / frames : 0.0;
     std::printf("frames        %d (%d body-frames with a true person)\n", frames, s.frames);
@@ -134,8 +183,15 @@ void add(CLI::App& app) {
       "reid-stream", "Score online re-identification on a recording with truth: per-frame accuracy, splits, merges");
   sub->add_option("REC", command->input,
                   "Recording with a truth stream (bodyrec synth); with --colour-only its colour frames alone, each "
-                  "tracked box scored as the true person whose pixels fill most of it")
+                  "tracked box scored as the true person whose pixels fill most of it. Or a video or images with --gt")
       ->required();
+  sub->add_option("--gt", command->gt,
+                  "For a video or images: ground-truth boxes with person ids, PETS/CVML XML (.xml) or MOTChallenge "
+                  "gt.txt; each tracked box is scored as the person whose box it overlaps most (IoU >= --gt-iou, one "
+                  "to one). The file's ids are the people: one who comes back under a new id counts as another person");
+  sub->add_option("--gt-iou", command->gt_iou, "Least IoU between a body's box and its person's box with --gt")
+      ->check(CLI::Range(0.05, 1.0))
+      ->capture_default_str();
   sub->add_option("--gallery", command->gallery,
                   "Start from (and write to) this gallery instead of a fresh one in memory");
   add_reid_options(*sub, command->options, false);
@@ -155,7 +211,8 @@ void add(CLI::App& app) {
                 "identities, ms_per_frame, colour_only, coverage: colour-only body-frames with a true person over "
                 "the people visible; with --true-bodies, separability: nn_accuracy, above_threshold, probes)");
   sub->footer("Example: bodyrec synth --scenario reenter --people 5 --frames 300 --seed 2 --out rec -q && "
-              "bodyrec eval reid-stream rec --json && bodyrec eval reid-stream rec --colour-only --json");
+              "bodyrec eval reid-stream rec --json && bodyrec eval reid-stream rec --colour-only --json\n"
+              "A video with ground truth: bodyrec eval reid-stream vtest.avi --gt PETS2009-S2L1.xml --json");
   sub->callback([command] { command->run(); });
 }
 

@@ -1,33 +1,16 @@
 // `--preset foreground` (background subtraction) in the detection and tracking commands: a static
 // camera's image sequence with one person-like figure walking right, 5 pixels per frame.
-#include <cstdio>
 #include <filesystem>
 #include <set>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "test_support.h"
+#include "walking_figure.h"
 
 namespace bodyrec::testing {
 namespace {
-
-// 40 frames of 320x240: a plain background and a 30x90 figure (red top, blue legs) whose left edge is at
-// 20 + 5 f on frame f, rows 100-189.
-std::filesystem::path walking_figure(const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir);
-  for (int f = 0; f < 40; ++f) {
-    cv::Mat image(240, 320, CV_8UC3, cv::Scalar(140, 150, 150));
-    cv::rectangle(image, cv::Rect(20 + 5 * f, 100, 30, 40), cv::Scalar(40, 40, 200), cv::FILLED);
-    cv::rectangle(image, cv::Rect(20 + 5 * f, 140, 30, 50), cv::Scalar(120, 30, 30), cv::FILLED);
-    char name[16];
-    std::snprintf(name, sizeof name, "%03d.png", f);
-    cv::imwrite((dir / name).string(), image);
-  }
-  return dir;
-}
 
 TEST(ForegroundDetectCli, TracksTheOneMovingFigureOfAStaticCamera) {
   TempDir dir;

@@ -1,0 +1,56 @@
+// `eval reid-stream VIDEO --gt FILE`: plain-camera re-identification scored against a ground-truth file of
+// boxes and person ids (PETS/CVML XML or MOTChallenge text), one walking figure.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "test_support.h"
+#include "walking_figure.h"
+
+namespace bodyrec::testing {
+namespace {
+
+// MOTChallenge ground truth of the walking figure (1-based frames), person `id` throughout.
+std::string figure_truth(int id) {
+  std::string text;
+  for (int f = 0; f < 40; ++f)
+    text += std::to_string(f + 1) + "," + std::to_string(id) + "," + std::to_string(20 + 5 * f) + ",100,30,90,1,1,1\n";
+  return text;
+}
+
+TEST(ReidStreamGtCli, ScoresAVideoAgainstItsGroundTruth) {
+  TempDir dir;
+  const std::string video = walking_figure_video(dir / "figure.avi").string(), gt = (dir / "gt.txt").string();
+  write_text(gt, figure_truth(7));
+  const RunResult r = run_bodyrec({"eval", "reid-stream", video, "--gt", gt, "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto s = last_json_line(r.out);
+  EXPECT_EQ(s["frames"].get<int>(), 40);
+  EXPECT_EQ(s["identities"].get<int>(), 1);
+  EXPECT_EQ(s["users"].get<int>(), 1);
+  EXPECT_EQ(s["splits"].get<int>(), 0);
+  EXPECT_EQ(s["merges"].get<int>(), 0);
+  EXPECT_GE(s["body_frames"].get<int>(), 15);  // after the background model's warm-up and the track's confirmation
+  EXPECT_DOUBLE_EQ(s["accuracy"].get<double>(), 1.0);
+  EXPECT_TRUE(s["colour_only"].get<bool>());
+}
+
+TEST(ReidStreamGtCli, BadGroundTruthAndMisuseAreOneLineErrors) {
+  TempDir dir;
+  const std::string video = walking_figure_video(dir / "figure.avi").string(), gt = (dir / "gt.txt").string();
+  // No truth at all for a video.
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--json"}), 3, "--gt");
+  // A broken row names the file and its line.
+  write_text(gt, figure_truth(7) + "41,7,abc,100,30,90,1,1,1\n");
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--gt", gt}), 3, gt);
+  // Truth only for frames the video does not have.
+  write_text(gt, "500,7,20,100,30,90,1,1,1\n");
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--gt", gt}), 3, "no ground truth for the frames");
+  // A recording has its own truth.
+  const auto& rec = synth_recording({"--people", "1", "--seed", "2", "--frames", "20"});
+  write_text(gt, figure_truth(7));
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec.string(), "--gt", gt}), 2, "--gt");
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--gt", gt, "--gt-iou", "0"}), 2, "--gt-iou");
+}
+
+}  // namespace
+}  // namespace bodyrec::testing
