@@ -1,5 +1,5 @@
-// People detection cost per frame on vtest.avi (768x576) for the two HOG presets and the thesis
-// author's dlib fHOG detector. Frames are decoded before timing; each iteration detects one frame, in
+// People detection cost per frame on vtest.avi (768x576) for the two HOG presets, background subtraction
+// and the thesis author's dlib fHOG detector. Frames are decoded before timing; each iteration detects one frame, in
 // video order (the default preset's motion model needs consecutive frames), cycling over 200 frames.
 // The reported real time per iteration is the time per frame. The photo cases cycle the same way over the
 // 42 Penn-Fudan test photos (BODYREC_DATA, default ../shared/datasets; 300-1000 px across).
@@ -13,6 +13,7 @@
 #include "bench_support.h"
 #include "bodyrec/detection/dpm_people_detector.h"
 #include "bodyrec/detection/fhog_detector.h"
+#include "bodyrec/detection/foreground_detector.h"
 #include "bodyrec/detection/hog_people_detector.h"
 #include "bodyrec/io/pennfudan.h"
 
@@ -48,6 +49,12 @@ void BM_HogDefaultPresetFixedScales(benchmark::State& state) {
   bodyrec::HogOptions options = bodyrec::hog_preset(bodyrec::HogPreset::kDefault);
   options.adapt_after = 0;
   bodyrec::HogPeopleDetector detector(options);
+  run(state, detector);
+}
+
+// Background subtraction (--preset foreground, plain-camera reid's detector).
+void BM_ForegroundPreset(benchmark::State& state) {
+  bodyrec::ForegroundPeopleDetector detector;
   run(state, detector);
 }
 
@@ -110,6 +117,7 @@ void BM_OpenCvPresetPennFudan(benchmark::State& state) {
 BENCHMARK(BM_HogThesisPreset)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_HogDefaultPreset)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_HogDefaultPresetFixedScales)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
+BENCHMARK(BM_ForegroundPreset)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 BENCHMARK(BM_ThesisAuthorFhog)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(5.0);
 // Whole passes over the 42 photos (sizes differ: a time-limited run would average over a prefix of them).
 BENCHMARK(BM_PhotoPresetPennFudan)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(84);
