@@ -113,7 +113,7 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"detect", v, "--every", "2.5"}, "--every: 2.5 is not a whole number");
   expect_usage_error({"detect", v, "--max-frames", "99999999999"}, "--max-frames: 99999999999 is out of range");
   expect_usage_error({"detect", v, "--scale", "fast"}, "--scale: fast is not a number");
-  expect_usage_error({"detect", v, "--preset", "fast"}, "--preset: 'fast' is not one of auto, default, photo, thesis, opencv");
+  expect_usage_error({"detect", v, "--preset", "fast"}, "--preset: 'fast' is not one of auto, default, photo, foreground, thesis, opencv");
   expect_usage_error({"groups", v, "--roles", "bosses"}, "--roles: 'bosses' is not one of groups, thesis, voting");
   expect_usage_error({"orient", "rec", "--views", "best"}, "--views: 'best' is not one of robust, thesis");
 }
