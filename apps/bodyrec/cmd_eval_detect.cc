@@ -43,6 +43,8 @@ struct EvalDetectCommand {
     if (!pennfudan.empty()) {
       if (!source.path.empty() || source.camera >= 0 || !gt.empty())
         throw UsageError("--pennfudan takes the images and the ground truth from DIR: no --source, --camera or --gt");
+      if (detector.preset == "foreground")
+        throw UsageError("--preset foreground needs one static camera's frames; --pennfudan's are unrelated photos");
       photos = load_pennfudan(pennfudan, parse_split(split));
       std::vector<std::string> files;
       for (size_t i = 0; i < photos.size(); ++i) {

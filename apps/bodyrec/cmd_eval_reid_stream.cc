@@ -2,11 +2,9 @@
 // synth), or over a video or image sequence with a ground-truth file of boxes and ids (--gt), on a fresh
 // store in memory (or --gallery) and scores it: per-frame identity accuracy, splits, merges
 // (eval/reid_stream_metrics.h), ms per frame.
-#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <tuple>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/eval/reid_stream_metrics.h"
@@ -22,23 +20,6 @@
 
 namespace bodyrec::cli {
 namespace {
-
-// Each body's ground-truth box (index into `truth`, -1 none): pairs of IoU >= min_iou, best first, each box
-// and each truth box used once.
-std::vector<int> match_truth(const std::vector<cv::Rect>& bodies, const std::vector<LabelledBox>& truth, double min_iou) {
-  std::vector<std::tuple<double, size_t, size_t>> pairs;
-  for (size_t b = 0; b < bodies.size(); ++b)
-    for (size_t t = 0; t < truth.size(); ++t) {
-      const double overlap = iou(Box(bodies[b]), truth[t].box);
-      if (overlap >= min_iou) pairs.emplace_back(overlap, b, t);
-    }
-  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
-  std::vector<int> out(bodies.size(), -1);
-  std::vector<bool> used(truth.size(), false);
-  for (const auto& [overlap, b, t] : pairs)
-    if (out[b] < 0 && !used[t]) out[b] = static_cast<int>(t), used[t] = true;
-  return out;
-}
 
 struct EvalReidStreamCommand {
   std::string input, jsonl, gallery, gt;
@@ -64,6 +45,8 @@ struct EvalReidStreamCommand {
       truth_frames = truth.frame_count;
       for (const LabelledBox& b : truth.boxes)
         if (!b.ignore && b.id >= 0) truth_by_frame[b.frame].push_back(b);
+      if (truth_by_frame.empty())
+        throw InputError(gt + ": every row is ignored (zero confidence, another class or no id): no person to score");
     }
     std::unique_ptr<JsonlWriter> lines;
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
@@ -88,17 +71,22 @@ struct EvalReidStreamCommand {
     double ms = 0, last_time = 0;
     const int frames = run_reid(in, options, *store, [&](const ReidFrame& f) {
       if (f.truth_visible > 0) visible += f.truth_visible;
+      // With --gt: each body's person by its box (-1 none), scored and written to --jsonl.
+      std::vector<int> gt_person(f.bodies.size(), -1);
       if (!gt.empty() && f.frame.index >= 0 && f.frame.index < truth_frames) {
         const auto it = truth_by_frame.find(f.frame.index);
         any_truth |= it != truth_by_frame.end();
-        const std::vector<LabelledBox> none;
-        const std::vector<LabelledBox>& people = it == truth_by_frame.end() ? none : it->second;
+        std::vector<Box> bodies, people;
+        if (it != truth_by_frame.end())
+          for (const LabelledBox& p : it->second) people.push_back(p.box);
         visible += static_cast<int>(people.size());
-        std::vector<cv::Rect> boxes;
-        for (const ReidIdentity& id : f.step.identities) boxes.push_back(id.box);
-        const std::vector<int> match = match_truth(boxes, people, gt_iou);
-        for (size_t i = 0; i < match.size(); ++i)
-          if (match[i] >= 0) counter.add(people[static_cast<size_t>(match[i])].id, f.bodies[i].key, f.step.identities[i].user);
+        for (const ReidIdentity& id : f.step.identities) bodies.push_back(Box(id.box));
+        const std::vector<int> match = match_bodies_to_truth(bodies, people, gt_iou);
+        for (size_t i = 0; i < match.size(); ++i) {
+          if (match[i] < 0) continue;
+          gt_person[i] = it->second[static_cast<size_t>(match[i])].id;
+          counter.add(gt_person[i], f.bodies[i].key, f.step.identities[i].user);
+        }
       }
       if (f.frame.index >= 0) {
         last_frame = f.frame.index;
@@ -110,9 +98,10 @@ struct EvalReidStreamCommand {
         nlohmann::json j = reid_frame_json(f, last_frame + 1, last_time);
         for (size_t i = 0; i < f.bodies.size(); ++i) {
           const int t = f.bodies[i].truth;
-          j["bodies"][i]["person"] = f.frame.truth && t >= 0
-                                         ? nlohmann::json(f.frame.truth->people[static_cast<size_t>(t)].identity)
-                                         : nlohmann::json();
+          j["bodies"][i]["person"] =
+              !gt.empty() ? (gt_person[i] >= 0 ? nlohmann::json(gt_person[i]) : nlohmann::json())
+              : f.frame.truth && t >= 0 ? nlohmann::json(f.frame.truth->people[static_cast<size_t>(t)].identity)
+                                        : nlohmann::json();
         }
         lines->write(j);
       }
@@ -138,6 +127,9 @@ struct EvalReidStreamCommand {
       throw InputError(gt.empty() ? input + ": the recording has no truth stream (make one with bodyrec synth)"
                                   : gt + ": no ground truth for the frames of " + input);
     const ReidStreamScore s = counter.score();
+    if (!gt.empty() && s.frames == 0)
+      throw InputError(gt + ": no tracked body of " + input + " overlaps a ground-truth box at IoU >= " +
+                       std::to_string(gt_iou) + " (other frame numbering or image size?)");
     const double per_frame = frames ? ms / frames : 0.0;
     std::printf("frames        %d (%d body-frames with a true person)\n", frames, s.frames);
     std::printf("accuracy      %.4f (right user / body-frames; %d still undecided count wrong)\n", s.accuracy,
@@ -180,7 +172,8 @@ struct EvalReidStreamCommand {
 void add(CLI::App& app) {
   auto command = std::make_shared<EvalReidStreamCommand>();
   CLI::App* sub = app.add_subcommand(
-      "reid-stream", "Score online re-identification on a recording with truth: per-frame accuracy, splits, merges");
+      "reid-stream",
+      "Score online re-identification on a recording with truth, or footage with --gt: per-frame accuracy, splits, merges");
   sub->add_option("REC", command->input,
                   "Recording with a truth stream (bodyrec synth); with --colour-only its colour frames alone, each "
                   "tracked box scored as the true person whose pixels fill most of it. Or a video or images with --gt")

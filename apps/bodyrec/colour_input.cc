@@ -41,6 +41,11 @@ void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
                  "into the background")
       ->check(in_range(10, 100000))
       ->capture_default_str();
+  sub.add_option("--fps", o.image_fps,
+                 "Frame rate of an image sequence, whose files carry no times: image N is at N / fps seconds "
+                 "(walking directions and leaving are measured in time); videos and cameras have their own")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
   const std::vector<CLI::Option*> all = sub.get_options();
   for (std::size_t i = before; i < all.size(); ++i) all[i]->group(group);
 }
@@ -61,6 +66,8 @@ std::unique_ptr<ColourInput> open_colour_input(const std::string& path, const Co
     throw UsageError("--shape-model is used by --body-mask shape only");
   if (o.people == PeopleFrom::kForeground && !o.detector.model_file.empty())
     throw UsageError("--detector-model is a HOG-family detector: give --detector hog with it");
+  if (o.people == PeopleFrom::kHog && o.detector.preset == "foreground")
+    throw UsageError("--preset foreground is background subtraction: give --detector foreground instead of hog");
   auto in = std::make_unique<ColourInput>();
   ColourReidOptions& co = in->options;
   co.tracking = o.tracking;
@@ -74,6 +81,7 @@ std::unique_ptr<ColourInput> open_colour_input(const std::string& path, const Co
     s.camera = o.camera;
     in->frames = open_source(s);
     in->video = o.camera < 0 && in->frames->fps().has_value();
+    if (o.camera < 0 && !in->frames->fps()) in->image_fps = o.image_fps;
   }
   if (o.people == PeopleFrom::kForeground) {
     ForegroundOptions f;

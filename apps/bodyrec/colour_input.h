@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -31,10 +32,11 @@ struct ColourCliOptions {
   std::string shape_model;   // --shape-model (bodyrec train-shape) for --body-mask shape
   std::string calibration, homography;
   int history = ForegroundOptions{}.history;  // --background-history
+  double image_fps = 25;     // --fps: the frame rate of an image sequence (its frames carry no times)
 };
 
 // --colour-only, (with `camera`) --camera, --detector, --detector-model and the HOG options, the tracker's
-// options, --body-mask, --shape-model, --calibration, --homography, --background-history; all in the help
+// options, --body-mask, --shape-model, --calibration, --homography, --background-history, --fps; all in the help
 // group "Plain camera".
 void add_colour_options(CLI::App& sub, ColourCliOptions& options, bool camera = true);
 
@@ -50,6 +52,9 @@ struct ColourInput {
   std::unique_ptr<BodyMasker> masker;  // null: the foreground (the pipeline's default)
   ColourReidOptions options;
   bool video = false;  // frames from a file with its own rate (--realtime applies)
+  // An image sequence: its frames have no times, so frame N is placed at N / image_fps seconds (walking
+  // directions and leaving are measured in time). Unset for videos and cameras.
+  std::optional<double> image_fps;
 };
 
 // Opens what a colour run needs before any output is created. `path` is the input (ignored with --camera;

@@ -79,6 +79,7 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
     throw UsageError("--roi: " + std::to_string(o.roi[2]) + "x" + std::to_string(o.roi[3]) +
                      " is not a region (width and height must be positive)");
   if (!o.model_file.empty()) {
+    if (o.preset == "foreground") throw UsageError("a dlib fHOG model is its own detector: --preset foreground takes none");
     FhogOptions f;
     f.model_path = o.model_file;
     f.upsample = o.fhog_upsample;

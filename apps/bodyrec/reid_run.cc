@@ -113,7 +113,12 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
   };
   FrameLoopStats loop;
   if (c.frames) {
-    loop = run_frame_loop<Frame>([&c](Frame& f) { return c.frames->read(f); }, [](const Frame& f) { return f.time_s; },
+    const auto read = [&c](Frame& f) {
+      if (!c.frames->read(f)) return false;
+      if (c.image_fps) f.time_s = f.index / *c.image_fps;
+      return true;
+    };
+    loop = run_frame_loop<Frame>(read, [](const Frame& f) { return f.time_s; },
                                  lo, [&](Frame& f, const FrameArrival& arrival) {
                                    RgbdFrame rf;
                                    rf.index = f.index;

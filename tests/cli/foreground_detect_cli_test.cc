@@ -41,6 +41,9 @@ TEST(ForegroundDetectCli, HogOptionsAreRefused) {
                         "--hit-threshold");
   expect_one_line_error(run_bodyrec({"track", frames, "--preset", "foreground", "--roi", "0", "0", "50", "50", "-q"}), 2,
                         "--roi");
+  expect_one_line_error(run_bodyrec({"reid", frames, "--detector", "hog", "--preset", "foreground", "--gallery",
+                                     (dir / "g.db").string()}),
+                        2, "--detector foreground");
 }
 
 }  // namespace

@@ -38,7 +38,7 @@ TEST(TrackData, EvalTrackOnAllOfPets2009MeetsTheTargets) {
 }
 
 // The foreground detector (--preset foreground, what plain-camera `reid` uses by default) on the whole
-// video: measured MOTA 0.567, IDF1 0.495, 52 identity switches; far below HOG's, and 8x cheaper.
+// video: measured MOTA 0.567, IDF1 0.495, 52 identity switches; far below HOG's, and about 10x cheaper.
 TEST(TrackData, EvalTrackWithTheForegroundDetectorOnAllOfPets2009) {
   BODYREC_REQUIRE_DATA(gt, "pets09_s2l1/PETS2009-S2L1.xml");
   if (!std::filesystem::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";

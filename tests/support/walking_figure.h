@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -34,6 +35,7 @@ inline std::filesystem::path walking_figure(const std::filesystem::path& dir) {
 // The 40 frames as an MJPEG video at 25 fps (frame times, so walking directions give views).
 inline std::filesystem::path walking_figure_video(const std::filesystem::path& path) {
   cv::VideoWriter video(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 25, cv::Size(320, 240));
+  if (!video.isOpened()) throw std::runtime_error("cannot write the test video " + path.string());
   for (int f = 0; f < 40; ++f) video.write(walking_figure_frame(f));
   return path;
 }

@@ -4,7 +4,18 @@
 #include <tuple>
 #include <vector>
 
+#include "bodyrec/tracking/assignment.h"
+
 namespace bodyrec {
+
+std::vector<int> match_bodies_to_truth(const std::vector<Box>& bodies, const std::vector<Box>& truth, double min_iou) {
+  std::vector<std::vector<double>> overlap(bodies.size(), std::vector<double>(truth.size()));
+  for (size_t b = 0; b < bodies.size(); ++b)
+    for (size_t t = 0; t < truth.size(); ++t) overlap[b][t] = iou(bodies[b], truth[t]);
+  std::vector<int> match(bodies.size(), -1);
+  for (const auto& [b, t] : max_score_assignment(overlap, min_iou)) match[static_cast<size_t>(b)] = t;
+  return match;
+}
 namespace {
 
 template <typename K>

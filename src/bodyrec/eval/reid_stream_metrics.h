@@ -14,6 +14,9 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <vector>
+
+#include "bodyrec/core/geometry.h"
 
 namespace bodyrec {
 
@@ -44,5 +47,10 @@ class ReidStreamCounter {
   std::set<int> identities_;
   int frames_ = 0, undecided_ = 0;
 };
+
+// Which ground-truth box each body's box is (footage scored against a file of boxes and ids): the one-to-one
+// pairing of largest total IoU over pairs with IoU >= min_iou. Returns, per body, an index into `truth` or
+// -1 when it has none.
+std::vector<int> match_bodies_to_truth(const std::vector<Box>& bodies, const std::vector<Box>& truth, double min_iou);
 
 }  // namespace bodyrec

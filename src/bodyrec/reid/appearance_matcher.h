@@ -35,7 +35,7 @@ class DescriptorIndex {
 class AppearanceMatcher {
  public:
   virtual ~AppearanceMatcher() = default;
-  virtual std::string name() const = 0;     // "default", "lomo-xqda", "lomo", "stripes", "kaze"
+  virtual std::string name() const = 0;     // "default", "default-full", "lomo-xqda", "lomo", "stripes", "kaze"
   virtual std::string version() const = 0;  // descriptor format (and model fingerprint when learned)
   virtual std::string summary() const = 0;  // one line for reports: method, similarity, threshold
 

@@ -312,9 +312,14 @@ class LomoGogMatcher : public AppearanceMatcher {
 
   void check_model(const std::string& source) const {
     const std::string again = " (train it again with bodyrec train-reid)";
-    if (model_.features != feature_format())
+    if (model_.features != feature_format()) {
+      // The two default matchers' models differ in the sketch only: the other matcher reads this one.
+      const std::string other = model_.features == kFullFeatures      ? " (a default-full model: use --matcher default-full)"
+                                : model_.features == kDefaultFeatures ? " (a default model: use --matcher default)"
+                                                                      : again;
       throw InputError(source + ": re-identification model trained on features '" + model_.features + "', matcher " +
-                       name() + " computes '" + feature_format() + "'" + again);
+                       name() + " computes '" + feature_format() + "'" + other);
+    }
     if (kind_ == LearnedMatcherKind::kUnlearned) throw UsageError("matcher lomo takes no model");
     if (kind_ == LearnedMatcherKind::kPublished) {
       if (model_.input_length() != lomo_length())

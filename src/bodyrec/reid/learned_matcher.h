@@ -37,7 +37,7 @@ inline constexpr int kDefaultSelectionFolds = 4;
 inline constexpr int kDefaultMaxDims = 33;
 inline constexpr int kFullMaxDims = 100;  // default-full: the same variants on the unsketched features
 
-// `model` empty: untrained (kPublished and kDefault then need train() before descriptor(), which throws
+// `model` empty: untrained (the kinds but kUnlearned then need train() before descriptor(), which throws
 // ProcessingError otherwise). `source` names where the model came from, for errors: InputError when
 // the model was trained on other features or for another kind.
 std::unique_ptr<AppearanceMatcher> make_learned_matcher(LearnedMatcherKind kind, XqdaEnsemble model = {},
