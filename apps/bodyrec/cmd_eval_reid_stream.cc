@@ -2,6 +2,7 @@
 // synth), or over a video or image sequence with a ground-truth file of boxes and ids (--gt), on a fresh
 // store in memory (or --gallery) and scores it: per-frame identity accuracy, splits, merges
 // (eval/reid_stream_metrics.h), ms per frame.
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -41,10 +42,12 @@ struct EvalReidStreamCommand {
     std::map<int, std::vector<LabelledBox>> truth_by_frame;
     int truth_frames = 0;
     if (!gt.empty()) {
-      const GroundTruth truth = read_ground_truth(gt);
+      GroundTruth truth = read_ground_truth(gt);
       truth_frames = truth.frame_count;
-      for (const LabelledBox& b : truth.boxes)
-        if (!b.ignore && b.id >= 0) truth_by_frame[b.frame].push_back(b);
+      std::vector<LabelledBox>& rows = truth.boxes;
+      rows.erase(std::remove_if(rows.begin(), rows.end(), [](const LabelledBox& b) { return b.ignore || b.id < 0; }),
+                 rows.end());
+      truth_by_frame = truth.by_frame();
       if (truth_by_frame.empty())
         throw InputError(gt + ": every row is ignored (zero confidence, another class or no id): no person to score");
     }
