@@ -16,7 +16,7 @@ struct DetectCommand {
 
   void run() const {
     auto frames = open_source(source);
-    auto people = make_detector(detector, frames->fps().has_value());
+    auto people = make_detector(detector, *frames);
     const auto stats = run_detection(*frames, *people, outputs, true, nullptr);
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec detect: " << stats.frames << " frames, "

@@ -43,7 +43,7 @@ struct EvalDetectCommand {
     if (!pennfudan.empty()) {
       if (!source.path.empty() || source.camera >= 0 || !gt.empty())
         throw UsageError("--pennfudan takes the images and the ground truth from DIR: no --source, --camera or --gt");
-      if (detector.preset == "foreground")
+      if (detector.preset == DetectorPreset::kForeground)
         throw UsageError("--preset foreground needs one static camera's frames; --pennfudan's are unrelated photos");
       photos = load_pennfudan(pennfudan, parse_split(split));
       std::vector<std::string> files;
@@ -62,7 +62,7 @@ struct EvalDetectCommand {
       truth_frames = truth.frame_count;
       frames = open_source(source);
     }
-    auto people = make_detector(detector, frames->fps().has_value());
+    auto people = make_detector(detector, *frames);
     DetectionEvaluator evaluator(iou);
     const std::vector<LabelledBox> none;
     const auto stats = run_detection(*frames, *people, outputs, !outputs.jsonl.empty(),

@@ -28,7 +28,7 @@ struct GroupsCommand {
     groups.tracking.tracker.check();
     groups.resolved();
     auto frames = open_source(source);
-    auto people = make_detector(detector, frames->fps().has_value());
+    auto people = make_detector(detector, *frames);
     RunEvents events = open_events(event_options, "groups");
     GroupFrame previous;
     int last_frame = -1;

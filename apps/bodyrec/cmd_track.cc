@@ -18,7 +18,7 @@ struct TrackCommand {
   void run() const {
     tracking.tracker.check();
     auto frames = open_source(source);
-    auto people = make_detector(detector, frames->fps().has_value());
+    auto people = make_detector(detector, *frames);
     const auto stats = run_tracking(*frames, *people, tracking, outputs, true, nullptr);
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec track: " << stats.frames << " frames (" << stats.detected_frames << " detected), "

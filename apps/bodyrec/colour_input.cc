@@ -66,7 +66,7 @@ std::unique_ptr<ColourInput> open_colour_input(const std::string& path, const Co
     throw UsageError("--shape-model is used by --body-mask shape only");
   if (o.people == PeopleFrom::kForeground && !o.detector.model_file.empty())
     throw UsageError("--detector-model is a HOG-family detector: give --detector hog with it");
-  if (o.people == PeopleFrom::kHog && o.detector.preset == "foreground")
+  if (o.people == PeopleFrom::kHog && o.detector.preset == DetectorPreset::kForeground)
     throw UsageError("--preset foreground is background subtraction: give --detector foreground instead of hog");
   auto in = std::make_unique<ColourInput>();
   ColourReidOptions& co = in->options;

@@ -5,6 +5,7 @@
 #include "bodyrec/detection/fhog_detector.h"
 #include "bodyrec/detection/foreground_detector.h"
 #include "bodyrec/detection/hog_people_detector.h"
+#include "enum_option.h"
 #include "option_checks.h"
 
 namespace bodyrec::cli {
@@ -30,16 +31,23 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
 }
 
 void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& model_flag) {
-  sub.add_option("--preset", o.preset,
-                 "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
-                 "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
-                 "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
-                 "'foreground' (one static camera's video, camera or image sequence: people as foreground blobs of "
-                 "background subtraction, a few ms per frame; who stands still for long fades into the background), "
-                 "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
-                 "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)")
-      ->check(one_of({"auto", "default", "photo", "foreground", "thesis", "opencv"}))
-      ->capture_default_str();
+  add_enum_option(sub, "--preset", o.preset,
+                  std::vector<std::pair<std::string, DetectorPreset>>{{"auto", DetectorPreset::kAuto},
+                                                                      {"default", DetectorPreset::kDefault},
+                                                                      {"photo", DetectorPreset::kPhoto},
+                                                                      {"foreground", DetectorPreset::kForeground},
+                                                                      {"thesis", DetectorPreset::kThesis},
+                                                                      {"opencv", DetectorPreset::kOpenCv}},
+                  "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
+                  "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
+                  "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
+                  "'foreground' (one static camera's video, camera or image sequence of at least " +
+                      std::to_string(ForegroundOptions{}.warmup_frames + 1) +
+                      " frames: people as foreground blobs of background subtraction, a few ms per frame; who "
+                      "stands still for long fades into the background), "
+                  "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
+                  "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)",
+                  "auto");
   sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
@@ -62,24 +70,43 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
                            o.o_motion_margin})
     opt->default_str("preset");
   sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
-  sub.add_option("--motion", o.motion, "Search only around moving regions: on, off, or as the preset says")
-      ->check(one_of({"on", "off", "preset"}));
-  sub.add_option("--nms-iou", o.nms_iou, "Non-maximum suppression IoU threshold");
-  sub.add_option("--local-margin", o.local_region_margin,
-                 "HOG search around a track (frames between full detections): the window grows by this "
-                 "fraction of its size on every side")->capture_default_str();
-  sub.add_option("--local-height-margin", o.local_height_margin,
-                 "HOG search around a track: heights within this fraction of the track's are searched")
-      ->capture_default_str();
+  add_enum_option(sub, "--motion", o.motion,
+                  std::vector<std::pair<std::string, MotionChoice>>{
+                      {"on", MotionChoice::kOn}, {"off", MotionChoice::kOff}, {"preset", MotionChoice::kPreset}},
+                  "Search only around moving regions: on, off, or as the preset says", "preset");
+  o.o_nms = sub.add_option("--nms-iou", o.nms_iou,
+                           "Non-maximum suppression IoU threshold (HOG, photo and fHOG detectors)")
+                ->capture_default_str();
+  o.o_local_margin = sub.add_option("--local-margin", o.local_region_margin,
+                                    "HOG search around a track (frames between full detections): the window grows "
+                                    "by this fraction of its size on every side")
+                         ->capture_default_str();
+  o.o_local_height_margin =
+      sub.add_option("--local-height-margin", o.local_height_margin,
+                     "HOG search around a track: heights within this fraction of the track's are searched")
+          ->capture_default_str();
 }
 
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool consecutive_frames) {
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool consecutive_frames,
+                                              std::optional<int> frame_count) {
   // The library reads an empty rectangle as "no region", the whole frame: an empty --roi is a mistake.
   if (o.roi.size() == 4 && (o.roi[2] <= 0 || o.roi[3] <= 0))
     throw UsageError("--roi: " + std::to_string(o.roi[2]) + "x" + std::to_string(o.roi[3]) +
                      " is not a region (width and height must be positive)");
+  auto given = [](const CLI::Option* opt) { return opt && opt->count() > 0; };
+  // Options only HOG reads: given with another detector they are refused rather than ignored.
+  const std::vector<const CLI::Option*> hog_only = {o.o_hog_model, o.o_hit,    o.o_stride,       o.o_padding,
+                                                    o.o_scale,     o.o_group,  o.o_resize,       o.o_levels,
+                                                    o.o_adapt,     o.o_motion_margin, o.o_local_margin,
+                                                    o.o_local_height_margin};
   if (!o.model_file.empty()) {
-    if (o.preset == "foreground") throw UsageError("a dlib fHOG model is its own detector: --preset foreground takes none");
+    if (o.preset != DetectorPreset::kAuto)
+      throw UsageError("a dlib fHOG model is its own detector: --preset takes no value with it");
+    for (const CLI::Option* opt : hog_only)
+      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; a dlib fHOG model takes none");
+    if (o.roi.size() == 4 || o.motion != MotionChoice::kPreset)
+      throw UsageError(std::string(o.roi.size() == 4 ? "--roi" : "--motion") +
+                       " is a HOG option; a dlib fHOG model takes none");
     FhogOptions f;
     f.model_path = o.model_file;
     f.upsample = o.fhog_upsample;
@@ -87,34 +114,44 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
     f.nms_iou = o.nms_iou;
     return std::make_unique<FhogDetector>(f);
   }
-  auto given = [](const CLI::Option* opt) { return opt && opt->count() > 0; };
-  std::string preset = o.preset;
-  if (preset == "auto") {
+  DetectorPreset preset = o.preset;
+  if (preset == DetectorPreset::kAuto) {
     // Still images have no motion to narrow the search and their people may be any size: the photo
     // detector, unless a HOG option says HOG is wanted.
-    bool hog = o.roi.size() == 4 || o.motion == "on";
-    for (const CLI::Option* opt : {o.o_hog_model, o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize,
-                                   o.o_levels, o.o_adapt, o.o_motion_margin})
-      hog |= given(opt);
-    preset = consecutive_frames || hog ? "default" : "photo";
+    bool hog = o.roi.size() == 4 || o.motion == MotionChoice::kOn;
+    for (const CLI::Option* opt : hog_only) hog |= given(opt);
+    preset = consecutive_frames || hog ? DetectorPreset::kDefault : DetectorPreset::kPhoto;
   }
-  if (preset == "photo" || preset == "foreground") {
-    // The DPM and background subtraction have none of HOG's knobs: refuse them rather than ignore them.
-    const std::string which = preset == "photo" ? "the DPM detector" : "background subtraction";
-    for (const CLI::Option* opt : {o.o_hog_model, o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize,
-                                   o.o_levels, o.o_adapt, o.o_motion_margin})
-      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset " + preset + " uses " + which);
-    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset " + preset + " uses " + which);
-    if (o.motion == "on") throw UsageError("--motion on needs a HOG preset; --preset " + preset + " uses " + which);
+  if (preset == DetectorPreset::kPhoto || preset == DetectorPreset::kForeground) {
+    const bool photo = preset == DetectorPreset::kPhoto;
+    const std::string name = photo ? "photo" : "foreground";
+    const std::string which = photo ? "the DPM detector" : "background subtraction";
+    for (const CLI::Option* opt : hog_only)
+      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset " + name + " uses " + which);
+    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset " + name + " uses " + which);
+    if (o.motion == MotionChoice::kOn)
+      throw UsageError("--motion on needs a HOG preset; --preset " + name + " uses " + which);
   }
-  // Asked for by name, so an image folder is taken as one static camera's frames in order.
-  if (preset == "foreground") return std::make_unique<ForegroundPeopleDetector>(ForegroundOptions{});
-  if (preset == "photo") {
+  if (preset == DetectorPreset::kForeground) {
+    // Blobs of background subtraction do not overlap: there is nothing to suppress.
+    if (given(o.o_nms)) throw UsageError("--nms-iou: --preset foreground's blobs do not overlap, nothing is suppressed");
+    const ForegroundOptions f;
+    if (frame_count && *frame_count <= f.warmup_frames)
+      throw UsageError("--preset foreground learns the background for " + std::to_string(f.warmup_frames) +
+                       " frames before it reports anyone, and the input has " + std::to_string(*frame_count) +
+                       ": give a longer sequence, or --preset photo for still images");
+    // Asked for by name, so an image folder is taken as one static camera's frames in order.
+    return std::make_unique<ForegroundPeopleDetector>(f);
+  }
+  if (preset == DetectorPreset::kPhoto) {
     DpmOptions d = dpm_photo_preset();
     d.nms_iou = o.nms_iou;
     return std::make_unique<DpmPeopleDetector>(d);
   }
-  HogOptions h = hog_preset(*parse_hog_preset(preset));  // --preset is checked against the names
+  const HogPreset hog = preset == DetectorPreset::kThesis   ? HogPreset::kThesis
+                        : preset == DetectorPreset::kOpenCv ? HogPreset::kOpenCv
+                                                            : HogPreset::kDefault;
+  HogOptions h = hog_preset(hog);
   if (given(o.o_hog_model)) h.model = *parse_hog_model(o.hog_model);
   if (given(o.o_hit)) h.hit_threshold = o.hit_threshold;
   if (given(o.o_stride)) h.win_stride = o.win_stride;
@@ -127,12 +164,16 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   if (given(o.o_adapt)) h.adapt_after = o.adapt_after;
   if (given(o.o_motion_margin)) h.motion.margin = o.motion_margin;
   if (o.roi.size() == 4) h.roi = cv::Rect(o.roi[0], o.roi[1], o.roi[2], o.roi[3]);
-  if (o.motion != "preset") h.motion_roi = o.motion == "on";
+  if (o.motion != MotionChoice::kPreset) h.motion_roi = o.motion == MotionChoice::kOn;
   else if (!consecutive_frames) h.motion_roi = false;
   h.nms_iou = o.nms_iou;
   h.local_region_margin = o.local_region_margin;
   h.local_height_margin = o.local_height_margin;
   return std::make_unique<HogPeopleDetector>(h);
+}
+
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source) {
+  return make_detector(options, source.fps().has_value(), source.frame_count());
 }
 
 }  // namespace bodyrec::cli

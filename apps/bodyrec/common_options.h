@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -26,9 +27,22 @@ struct OutputOptions {
 // --jsonl, --annotate, --mot, --quiet.
 void add_output_options(CLI::App& sub, OutputOptions& options);
 
+// --preset: which detector, and for HOG its parameter set.
+enum class DetectorPreset {
+  kAuto,        // photo for unrelated still images, default for videos and cameras
+  kDefault,     // HOG tuned for video (hog_preset(HogPreset::kDefault))
+  kPhoto,       // OpenCV's DPM with the INRIA person model (dpm_photo_preset())
+  kForeground,  // background subtraction on one static camera (ForegroundPeopleDetector)
+  kThesis,      // HOG as the thesis called it
+  kOpenCv,      // HOG as OpenCV's peopledetect sample
+};
+
+// --motion: HOG's search around moving regions.
+enum class MotionChoice { kPreset, kOn, kOff };
+
 // Detector choice and every HOG parameter; explicitly given options override the preset's values.
 struct DetectorOptions {
-  std::string preset = "auto";  // auto: photo for still images, default for videos and cameras
+  DetectorPreset preset = DetectorPreset::kAuto;
   std::string model_file;  // dlib fHOG .svm; replaces HOG when given
   double fhog_upsample = 1.0, fhog_threshold = 0.0;
   std::string hog_model = "default";
@@ -36,11 +50,12 @@ struct DetectorOptions {
   double local_region_margin = HogOptions{}.local_region_margin, local_height_margin = HogOptions{}.local_height_margin;
   int win_stride = 0, padding = 0, group_threshold = 0, levels = 0, adapt_after = 0;
   std::vector<int> roi;
-  std::string motion = "preset";  // "on", "off" or "preset"
+  MotionChoice motion = MotionChoice::kPreset;
   std::vector<CLI::Option*> given;  // filled by add_detector_options
   CLI::Option *o_hit = nullptr, *o_stride = nullptr, *o_padding = nullptr, *o_scale = nullptr,
               *o_group = nullptr, *o_resize = nullptr, *o_levels = nullptr, *o_hog_model = nullptr,
-              *o_adapt = nullptr, *o_motion_margin = nullptr;
+              *o_adapt = nullptr, *o_motion_margin = nullptr, *o_nms = nullptr, *o_local_margin = nullptr,
+              *o_local_height_margin = nullptr;
 };
 
 // `model_flag` names the fHOG model option (`--model`; a command whose --model is something else renames it).
@@ -49,7 +64,12 @@ void add_detector_options(CLI::App& sub, DetectorOptions& options, const std::st
 // Builds the detector; throws UsageError for inconsistent options, InputError for a bad model file.
 // `consecutive_frames` says the frames come from one video or camera: motion regions (when the preset
 // or --motion asks for them) only make sense then, so for unrelated images they are off unless
-// --motion on is given.
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, bool consecutive_frames = true);
+// --motion on is given. `frame_count`, when known, is how many frames the detector will see: fewer than
+// the foreground preset's warm-up is a usage error (it would report nobody).
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, bool consecutive_frames = true,
+                                              std::optional<int> frame_count = std::nullopt);
+
+// The same for the frames of `source` (a video or camera is consecutive frames; its frame count if known).
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source);
 
 }  // namespace bodyrec::cli

@@ -44,6 +44,29 @@ TEST(ForegroundDetectCli, HogOptionsAreRefused) {
   expect_one_line_error(run_bodyrec({"reid", frames, "--detector", "hog", "--preset", "foreground", "--gallery",
                                      (dir / "g.db").string()}),
                         2, "--detector foreground");
+  expect_one_line_error(run_bodyrec({"detect", frames, "--preset", "foreground", "--nms-iou", "0.3", "-q"}), 2,
+                        "--nms-iou");
+  expect_one_line_error(run_bodyrec({"track", frames, "--preset", "foreground", "--local-margin", "0.2", "-q"}), 2,
+                        "--local-margin is a HOG option");
+}
+
+// The model learns the background for 10 frames and reports nobody before: a single photo, or any input of
+// 10 frames or fewer, would silently find no one.
+TEST(ForegroundDetectCli, InputsShorterThanTheWarmUpAreRefused) {
+  TempDir dir;
+  const std::filesystem::path frames = walking_figure(dir / "frames");
+  const std::string first = (frames / "000.png").string();
+  ASSERT_TRUE(std::filesystem::exists(first));
+  expect_one_line_error(run_bodyrec({"detect", first, "--preset", "foreground", "-q"}), 2, "the input has 1");
+  expect_one_line_error(run_bodyrec({"track", frames.string(), "--preset", "foreground", "--max-frames", "10", "-q"}),
+                        2, "the input has 10");
+  // Eleven frames: the eleventh is the first the model reports, and it finds the figure.
+  const RunResult r = run_bodyrec({"detect", frames.string(), "--preset", "foreground", "--max-frames", "11", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::string> lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 11u);
+  EXPECT_EQ(nlohmann::json::parse(lines[9])["detections"].size(), 0u);
+  EXPECT_EQ(nlohmann::json::parse(lines[10])["detections"].size(), 1u);
 }
 
 }  // namespace

@@ -114,6 +114,16 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"detect", v, "--max-frames", "99999999999"}, "--max-frames: 99999999999 is out of range");
   expect_usage_error({"detect", v, "--scale", "fast"}, "--scale: fast is not a number");
   expect_usage_error({"detect", v, "--preset", "fast"}, "--preset: 'fast' is not one of auto, default, photo, foreground, thesis, opencv");
+  expect_usage_error({"detect", v, "--motion", "sometimes"}, "--motion: 'sometimes' is not one of on, off, preset");
+  // A dlib fHOG model is its own detector: HOG's settings given with it would be silently ignored.
+  expect_usage_error({"detect", v, "--model", "people.svm", "--preset", "thesis"},
+                     "a dlib fHOG model is its own detector: --preset takes no value with it");
+  expect_usage_error({"detect", v, "--model", "people.svm", "--win-stride", "4"},
+                     "--win-stride is a HOG option; a dlib fHOG model takes none");
+  expect_usage_error({"track", v, "--model", "people.svm", "--motion", "on"},
+                     "--motion is a HOG option; a dlib fHOG model takes none");
+  expect_usage_error({"detect", v, "--preset", "photo", "--local-height-margin", "0.2"},
+                     "--local-height-margin is a HOG option; --preset photo uses the DPM detector");
   expect_usage_error({"groups", v, "--roles", "bosses"}, "--roles: 'bosses' is not one of groups, thesis, voting");
   expect_usage_error({"orient", "rec", "--views", "best"}, "--views: 'best' is not one of robust, thesis");
 }
