@@ -51,6 +51,30 @@ TEST(ReidStreamGtCli, ScoresAVideoAgainstItsGroundTruth) {
   expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--gt", gt}), 3, "overlaps");
 }
 
+// The same truth as PETS/CVML XML (0-based frames, boxes by their centre) scores the same.
+TEST(ReidStreamGtCli, CvmlTruthScoresAsMotTruthDoes) {
+  TempDir dir;
+  const std::string video = walking_figure_video(dir / "figure.avi").string(), xml = (dir / "gt.xml").string(),
+                    txt = (dir / "gt.txt").string();
+  std::string cvml = "<?xml version=\"1.0\"?>\n<dataset>\n";
+  for (int f = 0; f < 40; ++f)
+    cvml += "<frame number=\"" + std::to_string(f) + "\"><objectlist><object id=\"7\"><box h=\"90\" w=\"30\" xc=\"" +
+            std::to_string(35 + 5 * f) + "\" yc=\"145\"/></object></objectlist></frame>\n";
+  write_text(xml, cvml + "</dataset>\n");
+  write_text(txt, figure_truth(7));
+  const RunResult from_xml = run_bodyrec({"eval", "reid-stream", video, "--gt", xml, "--json"});
+  const RunResult from_txt = run_bodyrec({"eval", "reid-stream", video, "--gt", txt, "--json"});
+  ASSERT_EQ(from_xml.exit_code, 0) << from_xml.err;
+  ASSERT_EQ(from_txt.exit_code, 0) << from_txt.err;
+  const auto a = last_json_line(from_xml.out), b = last_json_line(from_txt.out);
+  EXPECT_EQ(a["identities"].get<int>(), 1);
+  EXPECT_EQ(a["body_frames"].get<int>(), b["body_frames"].get<int>());
+  EXPECT_DOUBLE_EQ(a["accuracy"].get<double>(), 1.0);
+  // An XML file cut in the middle names the file.
+  write_text(xml, cvml.substr(0, cvml.size() / 2));
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", video, "--gt", xml}), 3, xml);
+}
+
 // An image sequence has no frame times: --fps places them, so the figure walks and is decided as in the video.
 TEST(ReidStreamGtCli, AnImageSequenceIsTimedByFps) {
   TempDir dir;
