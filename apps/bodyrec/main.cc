@@ -11,6 +11,7 @@
 #include "command.h"
 #include "option_checks.h"
 #include "option_error_text.h"
+#include "output_paths.h"
 
 namespace {
 
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
     command.add(command.parent == "eval" ? *eval : app);
   }
   bodyrec::cli::check_numbers_everywhere(app);  // NaN, infinities and non-numbers: usage errors everywhere
+  bodyrec::cli::check_output_paths_everywhere(app);  // no output overwrites an input or another output
 
   try {
     app.parse(argc, argv);

@@ -151,9 +151,11 @@ std::string usage_message(const CLI::ParseError& error, const CLI::App& app) {
     const CLI::App* at = deepest_parsed(app);
     auto left = at->remaining();
     if (left.empty()) left = app.remaining(true);  // with fallthrough, a subcommand's stray word lands at the root
+    // The line already starts "bodyrec: error: ": name the level only below the root ("eval: ...").
+    const std::string where = at->get_parent() ? command_path(at).substr(app.get_name().size() + 1) + ": " : "";
     if (!left.empty())
-      return command_path(at) + ": unknown command '" + left.front() + "' (one of " + subcommand_names(*at) + ")";
-    return command_path(at) + ": a command is required (one of " + subcommand_names(*at) + ")";
+      return where + "unknown command '" + left.front() + "' (one of " + subcommand_names(*at) + ")";
+    return where + "a command is required (one of " + subcommand_names(*at) + ")";
   }
   if (dynamic_cast<const CLI::ExtrasError*>(&error) && matches("The following arguments? (?:was|were) not expected: (.*)")) {
     const std::string what = g[1];

@@ -137,16 +137,16 @@ TEST(UsageErrors, ParseErrorsAreOneLineInBodyrecsFormat) {
   expect_usage_error({"report", "run.jsonl"}, "--out is required");
   const RunResult none = run_bodyrec({});
   EXPECT_EQ(none.exit_code, 2);
-  EXPECT_EQ(none.err.rfind("bodyrec: error: bodyrec: a command is required (one of eval, detect, track,", 0), 0u)
+  EXPECT_EQ(none.err.rfind("bodyrec: error: a command is required (one of eval, detect, track,", 0), 0u)
       << none.err;
   const RunResult unknown = run_bodyrec({"frobnicate"});
   EXPECT_EQ(unknown.exit_code, 2);
-  EXPECT_EQ(unknown.err.rfind("bodyrec: error: bodyrec: unknown command 'frobnicate' (one of eval, detect,", 0), 0u)
+  EXPECT_EQ(unknown.err.rfind("bodyrec: error: unknown command 'frobnicate' (one of eval, detect,", 0), 0u)
       << unknown.err;
   EXPECT_EQ(std::count(unknown.err.begin(), unknown.err.end(), '\n'), 1) << unknown.err;
   const RunResult eval = run_bodyrec({"eval", "frobnicate"});
   EXPECT_EQ(eval.exit_code, 2);
-  EXPECT_EQ(eval.err.rfind("bodyrec: error: bodyrec eval: unknown command 'frobnicate' (one of ", 0), 0u) << eval.err;
+  EXPECT_EQ(eval.err.rfind("bodyrec: error: eval: unknown command 'frobnicate' (one of ", 0), 0u) << eval.err;
   // Help and version still exit 0 and print to stdout.
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{{"--help"}, {"detect", "--help"}, {"--version"}}) {
     const RunResult r = run_bodyrec(args);
