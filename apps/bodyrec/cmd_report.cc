@@ -1,5 +1,6 @@
 // `bodyrec report`: one self-contained HTML page about a run (and its evaluations) that people can look at.
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -71,7 +72,12 @@ struct ReportCommand {
       input.key_frames = decode_key_frames(input.run);
     const std::string page = report::render_report(input);
     std::ofstream file(out, std::ios::binary);
-    if (!file || !(file << page) || !file.flush()) throw ProcessingError(out + ": cannot write the report");
+    if (!file) throw ProcessingError(out + ": cannot write the report");
+    // The page shows people and their identities: private (0600) whatever the umask, like the gallery.
+    std::error_code ec;
+    std::filesystem::permissions(out, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write, ec);
+    if (ec) throw ProcessingError(out + ": cannot make the report private (" + ec.message() + ")");
+    if (!(file << page) || !file.flush()) throw ProcessingError(out + ": cannot write the report");
     std::printf("bodyrec: wrote %s (%zu KB; %s run, %d frames, %zu evaluations, %zu key frames%s)\n", out.c_str(),
                 page.size() / 1024, report::to_string(input.run.kind), input.run.frame_count(), input.evals.size(),
                 input.key_frames.size(),
@@ -84,7 +90,8 @@ void add(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("report", "Write one self-contained HTML page about a run and its evaluations");
   sub->footer(
       "The page embeds everything (inline CSS and SVG plots, JPEG images as data URIs): no scripts, nothing\n"
-      "loaded from the network. It shows images of people unless --no-images is given.\n"
+      "loaded from the network. It shows images of people unless --no-images is given, and is written\n"
+      "private (mode 0600) whatever the umask, as the gallery is.\n"
       "--gallery adds one row per gallery user: id, label, first/last seen (UTC), the 8 partial-scan views\n"
       "(F FR FL SR SL B BR BL; dashed = no scan, hatched = scan without an image) and, for users this run has\n"
       "no events for, the gallery's own events. The gallery is only read.\n"

@@ -91,5 +91,29 @@ TEST(ReidGallery, ARecordingFromTheFutureEndsNow) {
   EXPECT_LT(days_ago(last), 0.01) << last;
 }
 
+// A gallery filled with one --matcher and then run with another keeps its users: their scans are
+// described again from the stored images. Kept without images, that is impossible: a one-line error.
+TEST(ReidGallery, AnotherMatcherRecognisesTheSameUsersOrSaysWhyNot) {
+  TempDir dir;
+  const fs::path& rec = synth_recording({"--people", "2", "--seed", "3", "--frames", "150", "--scenario", "reenter"});
+  const std::string gallery = (dir / "g.db").string(), features = (dir / "features.db").string();
+  const RunResult lomo = run_bodyrec({"reid", rec.string(), "--matcher", "lomo", "--gallery", gallery, "--json", "-q"});
+  ASSERT_EQ(lomo.exit_code, 0) << lomo.err;
+  EXPECT_EQ(last_json_line(lomo.out)["users"].get<int>(), 2);
+  const RunResult stripes = run_bodyrec({"reid", rec.string(), "--matcher", "stripes", "--gallery", gallery, "--json", "-q"});
+  ASSERT_EQ(stripes.exit_code, 0) << stripes.err;
+  const auto j = last_json_line(stripes.out);
+  EXPECT_EQ(j["users"].get<int>(), 2);
+  EXPECT_EQ(j["enrolled"].get<int>(), 0);
+  EXPECT_GE(j["recognised"].get<int>(), 2);
+  const RunResult show = run_bodyrec({"gallery", "--gallery", gallery, "show", "1"});
+  EXPECT_TRUE(contains(show.out, "stripes/")) << show.out;
+  EXPECT_FALSE(contains(show.out, "lomo/")) << show.out;
+
+  ASSERT_EQ(run_bodyrec({"reid", rec.string(), "--matcher", "lomo", "--no-images", "--gallery", features, "-q"}).exit_code, 0);
+  expect_one_line_error(run_bodyrec({"reid", rec.string(), "--matcher", "stripes", "--gallery", features, "-q"}), 3,
+                        features + ": 16 scans (user 1 among them) hold lomo/");
+}
+
 }  // namespace
 }  // namespace bodyrec::testing

@@ -71,6 +71,9 @@ TEST(ReportCommand, GalleryUsersAreRowsOfEightViews) {
   EXPECT_EQ(count(page, "class=\"uevent\""), 1);
   EXPECT_TRUE(contains(page, "enrolled BL<time>11-20 13:10:00</time>"));
   EXPECT_FALSE(contains(page, "<script"));
+  // The page shows people: owner-only, whatever the umask the test runs under.
+  EXPECT_EQ(std::filesystem::status(dir / "report.html").permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
 
   // --no-images: the same rows with placeholders, no pixels.
   const RunResult hidden = report_with_gallery(dir, "hidden.html", {"--no-images"});

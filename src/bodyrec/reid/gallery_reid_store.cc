@@ -24,10 +24,9 @@ EventKind store_kind(ReidEventKind kind) {
 
 int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher) {
   const std::string descriptor = matcher.name() + "/" + matcher.version();
-  const std::string family = matcher.name() + "/";
-  // This matcher's scans made by another version of it (its descriptor, its model, or the layout).
+  // Scans this matcher cannot compare with: another matcher's, or made by another version of this one (its
+  // descriptor, its model, or the layout). Left as they are, their users would all be enrolled again.
   const auto stale = [&](const std::string& d, int version) {
-    if (d.compare(0, family.size(), family) != 0) return false;  // another matcher's: ignored
     if (d == descriptor && version > kReidDescriptorVersion)
       throw InputError(gallery.path() + ": scans of " + d + " in layout version " + std::to_string(version) +
                        ", newer than this bodyrec's " + std::to_string(kReidDescriptorVersion) + ": use a newer bodyrec");
@@ -47,10 +46,10 @@ int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher) {
     if (s.image_png.empty())
       throw InputError(gallery.path() + ": " + std::to_string(old.size()) + " scans (user " + std::to_string(u) +
                        " among them) hold " + s.descriptor + " features (layout " + std::to_string(s.descriptor_version) +
-                       "); this bodyrec describes with " + descriptor + " (layout " +
+                       "); this run describes with " + descriptor + " (layout " +
                        std::to_string(kReidDescriptorVersion) +
-                       ") and they have no image to describe again (kept with --no-images): forget those users "
-                       "(bodyrec gallery forget USER) or start a new gallery");
+                       ") and they have no image to describe again (kept with --no-images): run with the matcher that made "
+                       "them, forget those users (bodyrec gallery forget USER) or start a new gallery");
   gallery.transaction([&] {
     for (const auto& [u, s] : old) {
       const cv::Mat image = cv::imdecode(s.image_png, cv::IMREAD_COLOR);

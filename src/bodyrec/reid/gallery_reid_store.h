@@ -21,12 +21,13 @@ struct GalleryReidStoreOptions {
   std::optional<GalleryTime> start;
 };
 
-// Brings a gallery's scans made by another version of `matcher` (same name, another version() string,
-// e.g. another learned model, or an older kReidDescriptorVersion layout) up to date: each is described
-// again from its stored image and mask (stature unknown) and replaced, in one transaction. Returns how many
-// were. Throws InputError naming the gallery when such a scan has no image (a gallery kept with
-// --no-images): its features cannot be rebuilt, and matching them would be wrong; also for a layout newer
-// than this build's. Scans of other matchers are left alone.
+// Brings a gallery's scans that `matcher` cannot compare with up to date: another matcher's (a run with
+// another --matcher), or another version of this one (another version() string, e.g. another learned
+// model, or an older kReidDescriptorVersion layout). Each is described again from its stored image and
+// mask (stature unknown) and replaced, in one transaction, so its user is still recognised. Returns how
+// many were. Throws InputError naming the gallery when such a scan has no image (a gallery kept with
+// --no-images): its features cannot be rebuilt, and its users would all be enrolled again; also for a
+// layout newer than this build's.
 int redescribe_old_scans(Gallery& gallery, const AppearanceMatcher& matcher);
 
 class GalleryReidStore : public ReidStore {
