@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <map>
+#include <set>
 #include <memory>
 
 #include "bodyrec/io/json_numbers.h"
@@ -57,6 +59,11 @@ struct ReidCommand {
                                : in.source                 ? in.source->name()
                                                            : input;
     GalleryReidStore store(*gallery, *in.matcher, {source, gallery_clock_start(in, options)});
+    // Users erased from the gallery are never published: not from what an earlier run left in the spool,
+    // nor from this run's undelivered events once another process erases them (checked after each frame).
+    const auto exists = [&store](int64_t user) { return store.has_user(user); };
+    events.withdraw_erased(exists);
+    std::set<int64_t> published;  // users with events given to the publisher
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;
     double last_time = 0, ms = 0;
@@ -76,6 +83,7 @@ struct ReidCommand {
         if (f.frame.index < 0) payload["end"] = true;
         payload["source"] = in.path;
         events.publish(std::move(payload));
+        if (events.publisher) published.insert(e.user);
         if (!text) continue;
         std::printf("frame %d track %llu %s user %lld", f.frame.index >= 0 ? f.frame.index : last_frame,
                     static_cast<unsigned long long>(e.track), reid_event_name(e.kind), static_cast<long long>(e.user));
@@ -85,6 +93,12 @@ struct ReidCommand {
       }
       if (text && !f.step.events.empty()) std::fflush(stdout);  // as they happen, also into a pipe
       if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
+      bool erased = false;
+      for (auto u = published.begin(); u != published.end();) {
+        erased |= !exists(*u);
+        u = exists(*u) ? std::next(u) : published.erase(u);
+      }
+      if (erased) events.withdraw_erased(exists);
     });
     const nlohmann::json delivery = events.finish();
     const int frames = stats.frames;

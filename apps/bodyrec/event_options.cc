@@ -101,6 +101,16 @@ void RunEvents::publish(nlohmann::json payload) {
   publisher->publish(topic, json_text(payload));
 }
 
+size_t RunEvents::withdraw_erased(const std::function<bool(int64_t user)>& exists) {
+  if (!publisher) return 0;
+  return publisher->withdraw([&](const std::string& payload) {
+    const auto j = nlohmann::json::parse(payload, nullptr, false);
+    if (j.is_discarded() || !j.is_object()) return false;
+    const auto user = j.find("user");
+    return user != j.end() && user->is_number_integer() && !exists(user->get<int64_t>());
+  });
+}
+
 nlohmann::json RunEvents::finish() {
   if (!publisher) return nullptr;
   const PublisherStats s = publisher->close();
@@ -111,7 +121,7 @@ nlohmann::json RunEvents::finish() {
     std::fprintf(stderr, "bodyrec: %zu events not delivered yet (broker %s); kept in %s for the next run\n", s.pending,
                  s.connected ? "too slow" : "unreachable", spool.c_str());
   return {{"delivered", s.delivered}, {"pending", s.pending}, {"dropped", s.dropped},
-          {"recovered", s.recovered}, {"spool", spool},      {"topic", topic}};
+          {"recovered", s.recovered}, {"withdrawn", s.withdrawn}, {"spool", spool}, {"topic", topic}};
 }
 
 }  // namespace bodyrec::cli

@@ -3,6 +3,8 @@
 // docs/events.md.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -39,8 +41,12 @@ struct RunEvents {
 
   // Adds event_id, schema, sensor, run and wall_time to `payload` and publishes it (no-op without --events).
   void publish(nlohmann::json payload);
+  // Takes back the undelivered events (this run's and those an earlier run left in the spool) of every user
+  // for whom `exists` is false: a user erased from the gallery is never published afterwards. Returns how
+  // many were taken back (0 without --events).
+  size_t withdraw_erased(const std::function<bool(int64_t user)>& exists);
   // Closes the publisher; returns the summary for the run's --json ({delivered, pending, dropped, recovered,
-  // spool}, null without --events) and writes a line on stderr when events were dropped or wait undelivered.
+  // withdrawn, spool}, null without --events) and writes a line on stderr when events were dropped or wait undelivered.
   nlohmann::json finish();
 };
 

@@ -89,6 +89,16 @@ bool EventSpool::push(const SpooledEvent& event) {
   return true;
 }
 
+size_t EventSpool::erase_if(const std::function<bool(const SpooledEvent&)>& unwanted, bool keep_front) {
+  std::deque<SpooledEvent> kept;
+  for (size_t i = 0; i < queue_.size(); ++i)
+    if ((keep_front && i == 0) || !unwanted(queue_[i])) kept.push_back(std::move(queue_[i]));
+  const size_t removed = queue_.size() - kept.size();
+  queue_ = std::move(kept);
+  if (removed > 0) compact();
+  return removed;
+}
+
 void EventSpool::pop() {
   queue_.pop_front();
   ++sent_;

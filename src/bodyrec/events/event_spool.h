@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <string>
 
 namespace bodyrec {
@@ -37,6 +38,10 @@ class EventSpool {
   const SpooledEvent& front() const { return queue_.front(); }
   // The front event was delivered: removed from the queue and recorded as delivered on disk.
   void pop();
+  // Removes every undelivered event for which `unwanted` is true (not the front when `keep_front`: it is
+  // on its way to the broker) and rewrites the file without them, so that their bytes leave the spool.
+  // Returns how many were removed.
+  size_t erase_if(const std::function<bool(const SpooledEvent&)>& unwanted, bool keep_front);
 
   bool empty() const { return queue_.empty(); }
   size_t size() const { return queue_.size(); }

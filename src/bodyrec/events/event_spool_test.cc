@@ -49,6 +49,24 @@ TEST(EventSpool, KeepsOrderAcrossRunsAndForgetsWhatWasDelivered) {
   EXPECT_EQ(s.recovered(), 0u);
 }
 
+// Withdrawn events leave the queue and the file (their bytes too); the front one may be kept (in flight).
+TEST(EventSpool, EraseIfRemovesEventsFromTheQueueAndTheFile) {
+  TempDir dir;
+  const std::string path = (dir / "events.spool").string();
+  EventSpool s(path, 100);
+  for (int i = 0; i < 6; ++i) s.push(ev(i));
+  drain(s, 1);  // n 0 delivered
+  const auto even = [](const SpooledEvent& e) { return (e.payload[5] - '0') % 2 == 0; };
+  EXPECT_EQ(s.erase_if(even, /*keep_front=*/false), 2u);  // n 2 and 4
+  EXPECT_EQ(s.size(), 3u);
+  EXPECT_EQ(read_text(path).find("\\\"n\\\":2"), std::string::npos) << read_text(path);
+  EXPECT_NE(read_text(path).find("\\\"n\\\":3"), std::string::npos) << read_text(path);
+  EXPECT_EQ(s.erase_if([](const SpooledEvent&) { return true; }, /*keep_front=*/true), 2u);  // n 3 and 5
+  EXPECT_EQ(drain(s, 10), std::vector<std::string>({"{\"n\":1}"}));
+  EventSpool again(path, 100);
+  EXPECT_EQ(again.recovered(), 0u);
+}
+
 TEST(EventSpool, AFullSpoolDropsNewEventsAndCountsThem) {
   TempDir dir;
   EventSpool s((dir / "s").string(), 3);

@@ -49,6 +49,14 @@ void EventPublisher::publish(const std::string& topic, const std::string& payloa
   spool_.push({topic, payload});
 }
 
+size_t EventPublisher::withdraw(const std::function<bool(const std::string& payload)>& unwanted) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const size_t n = spool_.erase_if([&](const SpooledEvent& e) { return unwanted(e.payload); },
+                                   inflight_.has_value() || sending_front_);
+  withdrawn_ += n;
+  return n;
+}
+
 PublisherStats EventPublisher::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stats_unlocked();
@@ -74,6 +82,7 @@ PublisherStats EventPublisher::stats_unlocked() const {
   s.pending = spool_.size();
   s.dropped = spool_.dropped();
   s.recovered = spool_.recovered();
+  s.withdrawn = withdrawn_;
   s.connected = ever_connected_;
   return s;
 }
@@ -169,7 +178,10 @@ void EventPublisher::run() {
       continue;
     }
     std::optional<SpooledEvent> send;
-    if (connected_ && !inflight_ && !spool_.empty()) send = spool_.front();
+    if (connected_ && !inflight_ && !spool_.empty()) {
+      send = spool_.front();
+      sending_front_ = true;  // withdraw() keeps it until it is in flight or back in the queue
+    }
     const bool stalled = !connected_ && (refused_ || Clock::now() - connecting_since > kConnectTimeout);
     lock.unlock();
     int rc = MOSQ_ERR_SUCCESS;
@@ -177,11 +189,10 @@ void EventPublisher::run() {
       int mid = 0;
       rc = mosquitto_publish(client_, &mid, send->topic.c_str(), static_cast<int>(send->payload.size()),
                              send->payload.data(), 1, false);
-      if (rc == MOSQ_ERR_SUCCESS) {
-        lock.lock();
-        inflight_ = mid;
-        lock.unlock();
-      }
+      lock.lock();
+      if (rc == MOSQ_ERR_SUCCESS) inflight_ = mid;
+      sending_front_ = false;
+      lock.unlock();
     }
     if (rc == MOSQ_ERR_SUCCESS && !stalled) rc = mosquitto_loop(client_, kLoopMs, 1);
     if (rc != MOSQ_ERR_SUCCESS || stalled) {

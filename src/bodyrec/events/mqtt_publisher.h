@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,6 +44,7 @@ struct PublisherStats {
   size_t pending = 0;    // still in the spool (delivered by a later run)
   size_t dropped = 0;    // lost: the spool was full, or its file held unreadable lines
   size_t recovered = 0;  // undelivered events of an earlier run found in the spool at the start
+  size_t withdrawn = 0;  // taken back before delivery (withdraw)
   bool connected = false;  // the broker answered at least once during the run
 };
 
@@ -56,6 +58,10 @@ class EventPublisher {
 
   // Queues one event (QoS 1); returns at once. ProcessingError when the spool file cannot be written.
   void publish(const std::string& topic, const std::string& payload);
+  // Takes back every undelivered event whose payload `unwanted` names (e.g. a user erased from the gallery
+  // meanwhile): removed from the spool and its file, never delivered. The one event on its way to the
+  // broker, if any, cannot be taken back. Returns how many were removed.
+  size_t withdraw(const std::function<bool(const std::string& payload)>& unwanted);
   // Waits while events are undelivered and the broker answers, at most drain_seconds (not at all when
   // the broker refused or could not be reached since close was called), then disconnects. Idempotent.
   PublisherStats close();
@@ -79,7 +85,8 @@ class EventPublisher {
   bool stopping_ = false, failed_since_stop_ = false, spool_error_ = false;
   std::chrono::steady_clock::time_point deadline_;
   std::optional<int> inflight_;  // mid of the front event, sent and not acknowledged
-  size_t delivered_ = 0;
+  bool sending_front_ = false;    // the front event is being handed to the broker (inflight_ not yet set)
+  size_t delivered_ = 0, withdrawn_ = 0;
   std::thread thread_;
   bool closed_ = false;
 };
