@@ -5,6 +5,7 @@
 #include "command.h"
 #include "common_options.h"
 #include "detection_job.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -15,9 +16,11 @@ struct DetectCommand {
   DetectorOptions detector;
 
   void run() const {
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame, outputs whole, exit 0
     auto frames = open_source(source);
     auto people = make_detector(detector, *frames);
     const auto stats = run_detection(*frames, *people, outputs, true, nullptr);
+    if (stats.stopped) std::cerr << "bodyrec detect: stopped by a signal after " << stats.frames << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec detect: " << stats.frames << " frames, "
                 << (stats.frames ? stats.detector_ms / stats.frames : 0.0) << " ms per frame (" << people->describe()

@@ -12,6 +12,7 @@
 #include "common_options.h"
 #include "event_options.h"
 #include "groups_job.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -27,6 +28,7 @@ struct GroupsCommand {
   void run() const {
     groups.tracking.tracker.check();
     groups.resolved();
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame: outputs whole, summary written, exit 0
     auto frames = open_source(source);
     auto people = make_detector(detector, *frames);
     RunEvents events = open_events(event_options, "groups");
@@ -64,6 +66,7 @@ struct GroupsCommand {
     if (events.publisher) publish(GroupFrame{}, last_frame, last_time, true);  // the run ends every group
     const nlohmann::json delivery = events.finish();
     const double n = std::max(1, stats.frames);
+    if (stats.stopped) std::cerr << "bodyrec groups: stopped by a signal after " << stats.frames << " frames\n";
     if (!outputs.quiet)
       std::cerr << "bodyrec groups: " << stats.frames << " frames, " << stats.total_ms() / n
                 << " ms per frame (detection+tracking " << stats.tracking_ms / n << ", motion "
@@ -73,6 +76,7 @@ struct GroupsCommand {
     if (json) {
       const nlohmann::json summary = {
           {"frames", stats.frames},
+          {"stopped", stats.stopped},
           {"ms_per_frame", stats.total_ms() / n},
           {"ms", {{"tracking", stats.tracking_ms / n}, {"motion", stats.stages.motion / n},
                   {"groups", stats.stages.groups / n}, {"roles", stats.stages.roles / n},

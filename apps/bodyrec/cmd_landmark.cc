@@ -15,6 +15,7 @@
 #include "common_options.h"
 #include "run_sinks.h"
 #include "shape_fitting_options.h"
+#include "stop_signal.h"
 #include "tracking_job.h"
 
 namespace bodyrec::cli {
@@ -57,7 +58,8 @@ struct LandmarkCommand {
     Frame frame;
     int count = 0, persons = 0;
     double detect_ms = 0, fit_ms = 0;
-    while (frames->read(frame)) {
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame, outputs whole, exit 0
+    while (!StopOnSignal::requested() && frames->read(frame)) {
       const auto t0 = std::chrono::steady_clock::now();
       std::vector<Person> found = tracker ? tracked(*tracker, frame) : detected(*people, frame);
       const auto t1 = std::chrono::steady_clock::now();
@@ -73,6 +75,7 @@ struct LandmarkCommand {
       write(sinks, frame, found);
       progress.update(++count);
     }
+    if (StopOnSignal::requested()) std::cerr << "bodyrec landmark: stopped by a signal after " << count << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec landmark: " << count << " frames, " << persons << " people landmarked, "
                 << (count ? detect_ms / count : 0.0) << " ms " << (track ? "detection and tracking" : "detection")

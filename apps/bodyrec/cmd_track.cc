@@ -4,6 +4,7 @@
 #include "bodyrec/io/frame_source.h"
 #include "command.h"
 #include "common_options.h"
+#include "stop_signal.h"
 #include "tracking_job.h"
 
 namespace bodyrec::cli {
@@ -17,9 +18,11 @@ struct TrackCommand {
 
   void run() const {
     tracking.tracker.check();
+    StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame, outputs whole, exit 0
     auto frames = open_source(source);
     auto people = make_detector(detector, *frames);
     const auto stats = run_tracking(*frames, *people, tracking, outputs, true, nullptr);
+    if (stats.stopped) std::cerr << "bodyrec track: stopped by a signal after " << stats.frames << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec track: " << stats.frames << " frames (" << stats.detected_frames << " detected), "
                 << (stats.frames ? stats.processing_ms / stats.frames : 0.0) << " ms per frame ("

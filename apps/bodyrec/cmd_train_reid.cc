@@ -38,7 +38,7 @@ void add(CLI::App& app) {
       "identity. The default matchers first pick their variant by cross-validation over these people; default-full (the "
       "same on the unsketched features, up to 100 dimensions per part) is more accurate and its model about "
       "7.7 MB, against 1 MB. Use the "
-      "model with `--model FILE` (reid, eval reid, gallery), or put a default model in models/ as "
+      "model with `--model FILE` (reid, eval reid, eval reid-stream), or put a default model in models/ as "
       "reid-default.yml.gz (or in $BODYREC_MODELS) to replace the shipped one.\n"
       "Example: bodyrec train-reid --root my_people --id-regex '^(\\w+)/' --cam-regex '/cam(\\d)_' --out reid.yml.gz");
   add_reid_dataset_options(*sub, command->dataset);

@@ -8,6 +8,7 @@
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
 #include "run_sinks.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 
@@ -20,7 +21,7 @@ DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, c
   Progress progress(source.frame_count(), outputs.quiet);
   DetectionRunStats stats;
   Frame frame;
-  while (source.read(frame)) {
+  while (!StopOnSignal::requested() && source.read(frame)) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<Detection> detections = detector.detect(frame.image);
     stats.detector_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -49,6 +50,7 @@ DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, c
     if (on_frame) on_frame(frame, detections);
     progress.update(stats.frames);
   }
+  stats.stopped = StopOnSignal::requested();
   return stats;
 }
 

@@ -13,6 +13,7 @@ namespace bodyrec::cli {
 struct DetectionRunStats {
   int frames = 0;
   double detector_ms = 0;  // time spent in the detector only (not decoding or writing)
+  bool stopped = false;    // SIGINT/SIGTERM ended the run early (a StopOnSignal was alive)
 };
 
 // Runs `detector` on every frame of `source`, writes JSONL (when `write_jsonl`), MOT and annotated

@@ -10,8 +10,9 @@
 #include "bodyrec/io/progress.h"
 #include "bodyrec/io/sinks.h"
 #include "enum_option.h"
-#include "run_sinks.h"
 #include "option_checks.h"
+#include "run_sinks.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -169,7 +170,7 @@ GroupsRunStats run_groups(FrameSource& source, PeopleDetector& detector, const G
   RunSinks sinks(outputs, write_jsonl, options.fps > 0 ? options.fps : source.fps().value_or(25.0));
   Progress progress(source.frame_count(), outputs.quiet);
   GroupsRunStats stats;
-  for (Frame frame; source.read(frame);) {
+  for (Frame frame; !StopOnSignal::requested() && source.read(frame);) {
     const GroupPipelineResult r = pipeline.process(frame);
     ++stats.frames;
     stats.tracking_ms += r.tracking_ms;
@@ -191,6 +192,7 @@ GroupsRunStats run_groups(FrameSource& source, PeopleDetector& detector, const G
     if (on_frame) on_frame(frame, r.groups);
     progress.update(stats.frames);
   }
+  stats.stopped = StopOnSignal::requested();
   return stats;
 }
 

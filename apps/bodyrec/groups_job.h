@@ -33,6 +33,7 @@ struct GroupsRunStats {
   int frames = 0;
   double tracking_ms = 0;  // detection + tracking
   StageTimes stages;       // summed over frames
+  bool stopped = false;    // SIGINT/SIGTERM ended the run early (a StopOnSignal was alive)
   double total_ms() const {
     return tracking_ms + stages.motion + stages.groups + stages.roles + stages.leader + stages.flow;
   }

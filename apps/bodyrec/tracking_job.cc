@@ -8,8 +8,9 @@
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
 #include "enum_option.h"
-#include "run_sinks.h"
 #include "option_checks.h"
+#include "run_sinks.h"
+#include "stop_signal.h"
 
 namespace bodyrec::cli {
 std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions& o) {
@@ -60,7 +61,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
   Progress progress(source.frame_count(), outputs.quiet);
   TrackingRunStats stats;
   Frame frame;
-  while (source.read(frame)) {
+  while (!StopOnSignal::requested() && source.read(frame)) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<TrackedPerson> tracks = tracking.step(frame.index, frame.image);
     const bool detect = tracking.last_was_full();
@@ -92,6 +93,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
     if (on_frame) on_frame(frame, tracks);
     progress.update(stats.frames);
   }
+  stats.stopped = StopOnSignal::requested();
   return stats;
 }
 

@@ -22,6 +22,7 @@ struct TrackingRunStats {
   int frames = 0;
   int detected_frames = 0;
   double processing_ms = 0;  // detector + tracker time (not decoding or writing)
+  bool stopped = false;      // SIGINT/SIGTERM ended the run early (a StopOnSignal was alive)
 };
 
 // Runs detection and tracking on every frame of `source`, writes JSONL (when `write_jsonl`:
