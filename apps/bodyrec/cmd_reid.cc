@@ -59,6 +59,9 @@ struct ReidCommand {
                                : in.source                 ? in.source->name()
                                                            : input;
     GalleryReidStore store(*gallery, *in.matcher, {source, gallery_clock_start(in, options)});
+    if (!options.no_images && !gallery->options().store_images)
+      std::fprintf(stderr, "bodyrec: %s holds features only (kept with --no-images): this run stores no images either\n",
+                   gallery->path().c_str());
     // Users erased from the gallery are never published: not from what an earlier run left in the spool,
     // nor from this run's undelivered events once another process erases them (checked after each frame).
     const auto exists = [&store](int64_t user) { return store.has_user(user); };

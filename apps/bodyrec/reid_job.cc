@@ -24,7 +24,8 @@ void add_reid_options(CLI::App& sub, ReidCliOptions& o, bool gallery_option, boo
   sub.add_option("--model", o.model,
                  "Learned model for --matcher default (instead of the shipped one), default-full or lomo-xqda (bodyrec "
                  "train-reid --out)");
-  sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery");
+  sub.add_flag("--no-images", o.no_images, "Store features only: no body pixels in the gallery. A gallery that holds scans and no image "
+                                   "stays so: later runs store no images in it either");
   sub.add_option("--prune-unseen-for", o.prune_unseen_for,
                  "Before the run, forget users unseen for this long (30d, 12h, 45m...)");
   sub.add_option("--max-events-per-user", o.max_events_per_user,
@@ -87,6 +88,8 @@ std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const 
   g.max_events_per_user = options.max_events_per_user;
   g.sensor = options.sensor;
   auto gallery = std::make_unique<Gallery>(path, g);
+  // A gallery kept with --no-images stays features only: a run that leaves the flag out stores no pixels in it.
+  if (g.store_images && gallery->scan_count() > 0 && gallery->scans_with_images() == 0) gallery->keep_features_only();
   if (!options.prune_unseen_for.empty())
     gallery->prune_unseen(parse_retention(options.prune_unseen_for, "--prune-unseen-for"));
   return gallery;

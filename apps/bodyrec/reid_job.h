@@ -95,7 +95,7 @@ ReidRunStats run_reid(ReidInput& input, const ReidCliOptions& options, ReidStore
                       const std::function<void(const ReidFrame&)>& sink);
 
 
-// Opens (or creates) the gallery the options name.
+// Opens (or creates) the gallery the options name; one that holds scans and no image is kept features only.
 std::unique_ptr<Gallery> open_reid_gallery(const ReidCliOptions& options, const std::string& path);
 
 }  // namespace bodyrec::cli

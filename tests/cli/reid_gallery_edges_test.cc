@@ -115,5 +115,27 @@ TEST(ReidGallery, AnotherMatcherRecognisesTheSameUsersOrSaysWhyNot) {
                         features + ": 16 scans (user 1 among them) hold lomo/");
 }
 
+// A gallery kept with --no-images stays features only when a later run leaves the flag out.
+TEST(ReidGallery, AFeaturesOnlyGalleryStaysSo) {
+  TempDir dir;
+  const fs::path& rec = synth_recording({"--people", "2", "--seed", "3", "--frames", "150", "--scenario", "reenter"});
+  const std::string gallery = (dir / "g.db").string();
+  ASSERT_EQ(run_bodyrec({"reid", rec.string(), "--no-images", "--gallery", gallery, "-q", "--max-frames", "70"}).exit_code, 0);
+  const RunResult later = run_bodyrec({"reid", rec.string(), "--gallery", gallery, "-q"});
+  ASSERT_EQ(later.exit_code, 0) << later.err;
+  EXPECT_TRUE(contains(later.err, gallery + " holds features only (kept with --no-images)")) << later.err;
+  for (const char* user : {"1", "2"}) {
+    const RunResult show = run_bodyrec({"gallery", "--gallery", gallery, "show", user, "--json"});
+    ASSERT_EQ(show.exit_code, 0) << show.err;
+    EXPECT_FALSE(contains(show.out, "\"image\":true")) << show.out;
+    EXPECT_TRUE(contains(show.out, "\"image\":false")) << show.out;
+  }
+  // A gallery with images is not affected.
+  const std::string with = (dir / "with.db").string();
+  ASSERT_EQ(run_bodyrec({"reid", rec.string(), "--gallery", with, "-q", "--max-frames", "70"}).exit_code, 0);
+  const RunResult again = run_bodyrec({"reid", rec.string(), "--gallery", with, "-q"});
+  EXPECT_FALSE(contains(again.err, "features only")) << again.err;
+}
+
 }  // namespace
 }  // namespace bodyrec::testing

@@ -105,6 +105,8 @@ class Gallery : public GalleryCache {
   UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
                const std::string& source = "");
   void set_label(UserId user, const std::string& label);
+  // From now on put_scan keeps features only, as with GalleryOptions::store_images = false.
+  void keep_features_only() { options_.store_images = false; }
 
   // Erases every scan (image, mask, features), event and the user row itself, then scrubs the database
   // (SQLite: secure_delete + VACUUM + WAL checkpoint; PostgreSQL: VACUUM FULL + CHECKPOINT). A `forgotten` event without a user id records that an
@@ -154,6 +156,8 @@ class Gallery : public GalleryCache {
   std::vector<StoredScan> user_scans(UserId user);  // with pixels, in view order
   std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
   int user_count();
+  int64_t scan_count();         // stored scans
+  int64_t scans_with_images();  // stored scans that hold body pixels (an image)
 
   // SQLite: PRAGMA integrity_check's first line ("ok" when healthy); PostgreSQL: "ok" when the gallery
   // answers (the server checks its own pages).

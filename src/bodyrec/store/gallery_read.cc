@@ -58,6 +58,12 @@ std::optional<User> Gallery::user(UserId id) {
 
 int Gallery::user_count() { return static_cast<int>(db_->query_int("SELECT count(*) FROM users")); }
 
+int64_t Gallery::scan_count() { return db_->query_int("SELECT count(*) FROM scans"); }
+
+int64_t Gallery::scans_with_images() {
+  return db_->query_int("SELECT count(*) FROM scans WHERE image_png IS NOT NULL AND length(image_png) > 0");
+}
+
 UserId Gallery::resolve_user(const std::string& id_or_label) {
   if (const auto id = parse_integer(id_or_label)) {
     if (user(*id)) return *id;

@@ -181,6 +181,16 @@ TEST_P(GallerySuite, NoImagesKeepsFeaturesOnly) {
   EXPECT_TRUE(scans[0].image_png.empty());
   EXPECT_TRUE(scans[0].mask_png.empty());
   EXPECT_EQ(scans[0].features.cols, 64);
+  EXPECT_EQ(g.scan_count(), 1);
+  EXPECT_EQ(g.scans_with_images(), 0);
+  // A connection that would store images, told to keep features only, stores none.
+  Gallery images(g.path(), creating());
+  images.put_scan(u, make_scan(View::B, 0.5, 2));
+  EXPECT_EQ(images.scans_with_images(), 1);
+  images.keep_features_only();
+  images.put_scan(u, make_scan(View::SL, 0.5, 3));
+  EXPECT_EQ(images.scan_count(), 3);
+  EXPECT_EQ(images.scans_with_images(), 1);
 }
 
 TEST_P(GallerySuite, EnrolLogsEventsAndMovesLastSeen) {
