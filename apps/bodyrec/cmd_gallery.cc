@@ -19,8 +19,8 @@ namespace {
 
 struct GalleryCommand {
   GalleryCliOptions gallery;
-  std::string user, dir, unseen_for;
-  bool json = false, yes = false;
+  std::string user, dir, unseen_for, label;
+  bool json = false, yes = false, dry_run = false;
 
   Gallery open(bool read_only, bool create = false) const {
     GalleryOptions o;
@@ -142,10 +142,40 @@ void purge(const GalleryCommand& c) {
   if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
 }
 
+void label(const GalleryCommand& c) {
+  // A label is how an operator names a person for show, export and forget: it must not read as an id, and
+  // it must name one user only.
+  if (!c.label.empty() && c.label.find_first_not_of("0123456789") == std::string::npos)
+    throw UsageError("LABEL: '" + c.label + "' reads as a user id; give a name with a letter in it");
+  Gallery g = c.open(false);
+  const UserId id = g.resolve_user(c.user);
+  for (const User& u : g.users())
+    if (u.id != id && !c.label.empty() && u.label == c.label)
+      throw InputError(c.gallery.path + ": label '" + c.label + "' already names user " + std::to_string(u.id));
+  g.set_label(id, c.label);
+  if (c.label.empty())
+    std::printf("user %lld has no label now\n", static_cast<long long>(id));
+  else
+    std::printf("user %lld is labelled %s\n", static_cast<long long>(id), c.label.c_str());
+}
+
 void prune(const GalleryCommand& c) {
   const auto unseen = parse_retention(c.unseen_for, "--unseen-for");
-  Gallery g = c.open(false);
+  if (unseen.count() <= 0)
+    throw UsageError("--unseen-for: " + c.unseen_for + " would erase everyone; to do that, run purge --yes");
+  Gallery g = c.open(c.dry_run);
   const GalleryTime now = GalleryClock::now();
+  if (c.dry_run) {
+    std::vector<UserId> going;
+    for (const User& u : g.users())
+      if (u.last_seen < now - unseen) going.push_back(u.id);
+    std::string ids;
+    for (UserId u : going) ids += (ids.empty() ? "" : " ") + std::to_string(u);
+    std::printf("would prune %zu users not seen since %s%s%s (nothing erased)\n", going.size(),
+                format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str());
+    if (c.json) std::printf("%s\n", json_text({{"users", going}, {"dry_run", true}}).c_str());
+    return;
+  }
   const EraseReport r = g.prune_unseen(unseen, now);
   std::string ids;
   for (UserId u : r.users) ids += (ids.empty() ? "" : " ") + std::to_string(u);
@@ -167,7 +197,8 @@ void add(CLI::App& app) {
       "          bodyrec gallery --gallery lab.db show 3 --json\n"
       "          bodyrec gallery --gallery postgresql://bodyrec_admin@db.site/bodyrec_site init\n"
       "          bodyrec gallery export 3 user3/\n"
-      "          bodyrec gallery forget 3\n"
+      "          bodyrec gallery label 3 alice\n"
+      "          bodyrec gallery forget alice\n"
       "          bodyrec gallery prune --unseen-for 30d");
 
   CLI::App* sub = gallery->add_subcommand(
@@ -198,13 +229,23 @@ void add(CLI::App& app) {
   sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
   sub->callback([c] { forget(*c); });
 
+  sub = gallery->add_subcommand("label", "Name a user (the name show, export and forget accept); an empty LABEL removes it");
+  sub->add_option("USER", c->user, "User id or label")->required();
+  sub->add_option("LABEL", c->label, "The name: unique in the gallery, not a number")->required();
+  sub->footer("Example: bodyrec gallery label 3 alice   (then: bodyrec gallery forget alice)");
+  sub->callback([c] { label(*c); });
+
   sub = gallery->add_subcommand("purge", "Erase every user (asks for --yes)");
   sub->add_flag("--yes", c->yes, "Really erase everything");
   sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
   sub->callback([c] { purge(*c); });
 
   sub = gallery->add_subcommand("prune", "Retention: erase users not seen for a given time");
-  sub->add_option("--unseen-for", c->unseen_for, "Whole number with s, m, h, d or w, e.g. 30d or 12h")->required();
+  sub->add_option("--unseen-for", c->unseen_for,
+                  "Whole number with s, m, h, d or w, e.g. 30d or 12h (more than 0). Last seen is the source's clock: "
+                  "a recording's time, not when it was processed")
+      ->required();
+  sub->add_flag("--dry-run", c->dry_run, "Only list the users it would erase");
   sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
   sub->footer("Example: bodyrec gallery prune --unseen-for 30d");
   sub->callback([c] { prune(*c); });

@@ -205,6 +205,27 @@ TEST(GalleryCli, ForgetSaysWhatItErased) {
   EXPECT_EQ(again.err, "bodyrec: error: " + path + ": no user 1\n");
 }
 
+TEST(GalleryCli, LabelNamesOneUser) {
+  TempDir dir;
+  const std::string path = make_gallery(dir);  // user 1 is alice, user 2 has no label
+  const RunResult named = run_bodyrec({"gallery", "--gallery", path, "label", "2", "bob"});
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_EQ(named.out, "user 2 is labelled bob\n");
+  const RunResult show = run_bodyrec({"gallery", "--gallery", path, "show", "bob", "--json"});
+  ASSERT_EQ(show.exit_code, 0) << show.err;
+  EXPECT_EQ(last_json_line(show.out)["user"]["id"], 2);
+  const RunResult taken = run_bodyrec({"gallery", "--gallery", path, "label", "bob", "alice"});
+  EXPECT_EQ(taken.exit_code, 3);
+  EXPECT_EQ(taken.err, "bodyrec: error: " + path + ": label 'alice' already names user 1\n");
+  const RunResult number = run_bodyrec({"gallery", "--gallery", path, "label", "2", "17"});
+  EXPECT_EQ(number.exit_code, 2);
+  EXPECT_EQ(number.err, "bodyrec: error: LABEL: '17' reads as a user id; give a name with a letter in it\n");
+  const RunResult cleared = run_bodyrec({"gallery", "--gallery", path, "label", "alice", ""});
+  ASSERT_EQ(cleared.exit_code, 0) << cleared.err;
+  EXPECT_EQ(cleared.out, "user 1 has no label now\n");
+  EXPECT_EQ(run_bodyrec({"gallery", "--gallery", path, "show", "alice"}).exit_code, 3);
+}
+
 TEST(GalleryCli, PurgeNeedsYes) {
   TempDir dir;
   const std::string path = make_gallery(dir);
@@ -223,8 +244,18 @@ TEST(GalleryCli, PruneByRetentionTime) {
   const RunResult keep = run_bodyrec({"gallery", "--gallery", path, "prune", "--unseen-for", "520w"});
   ASSERT_EQ(keep.exit_code, 0) << keep.err;
   EXPECT_TRUE(contains(keep.out, "pruned 0 users")) << keep.out;
-  // Everyone was seen before now: a zero retention time drops them all.
-  const RunResult gone = run_bodyrec({"gallery", "--gallery", path, "prune", "--unseen-for", "0s", "--json"});
+  // A zero retention time would erase everyone: that is purge --yes, not a retention policy.
+  const RunResult zero = run_bodyrec({"gallery", "--gallery", path, "prune", "--unseen-for", "0s"});
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_EQ(zero.err, "bodyrec: error: --unseen-for: 0s would erase everyone; to do that, run purge --yes\n");
+  // --dry-run lists who would go and erases nobody.
+  const RunResult dry = run_bodyrec({"gallery", "--gallery", path, "prune", "--unseen-for", "1s", "--dry-run", "--json"});
+  ASSERT_EQ(dry.exit_code, 0) << dry.err;
+  EXPECT_TRUE(contains(dry.out, "would prune 2 users not seen since ")) << dry.out;
+  EXPECT_EQ(last_json_line(dry.out)["users"], nlohmann::json({1, 2}));
+  EXPECT_EQ(last_json_line(run_bodyrec({"gallery", "--gallery", path, "list", "--json"}).out)["users"].size(), 2u);
+  // Both were last seen in 2026-11: a second's retention drops them all.
+  const RunResult gone = run_bodyrec({"gallery", "--gallery", path, "prune", "--unseen-for", "1s", "--json"});
   ASSERT_EQ(gone.exit_code, 0) << gone.err;
   const auto j = last_json_line(gone.out);
   EXPECT_EQ(j["users"], nlohmann::json({1, 2}));
