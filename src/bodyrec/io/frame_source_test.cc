@@ -416,6 +416,22 @@ TEST(Sinks, AnnotatedFolderAndVideo) {
   cv::Mat first;
   ASSERT_TRUE(back.read(first));
   EXPECT_EQ(first.size(), cv::Size(64, 48));
+  // Frames of other sizes (a folder of photos) are scaled into the video's size, not dropped.
+  const std::string mixed = (dir / "mixed.avi").string();
+  {
+    AnnotatedWriter w(mixed, 10);
+    w.write(0, image);
+    w.write(1, cv::Mat(96, 32, CV_8UC3, cv::Scalar(255, 255, 255)));  // tall: 16 x 48 in the middle
+    w.write(2, image);
+  }
+  cv::VideoCapture three(mixed);
+  ASSERT_TRUE(three.isOpened());
+  EXPECT_EQ(static_cast<int>(three.get(cv::CAP_PROP_FRAME_COUNT)), 3);
+  cv::Mat f;
+  ASSERT_TRUE(three.read(f) && three.read(f));
+  ASSERT_EQ(f.size(), cv::Size(64, 48));
+  EXPECT_GT(f.at<cv::Vec3b>(24, 32)[0], 200);  // the white image in the middle
+  EXPECT_LT(f.at<cv::Vec3b>(24, 4)[0], 40);    // black beside it
   EXPECT_TRUE(is_video_path("a.MP4"));
   EXPECT_TRUE(is_video_path("a.mkv"));
   EXPECT_TRUE(is_video_path("a.mov"));

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/json_numbers.h"
@@ -94,8 +95,21 @@ void AnnotatedWriter::write(int frame_index, const cv::Mat& image) {
     const int fourcc = mp4 ? cv::VideoWriter::fourcc('m', 'p', '4', 'v') : cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
     if (!video_.open(path_, fourcc, fps_, image.size()))
       throw ProcessingError("cannot create video " + path_);
+    size_ = image.size();
   }
-  video_.write(image);
+  if (image.size() == size_) {
+    video_.write(image);
+    return;
+  }
+  // A video has one frame size (the writer silently drops frames of another): images of other sizes are
+  // scaled to fit it, centred on black.
+  const double s = std::min(static_cast<double>(size_.width) / image.cols, static_cast<double>(size_.height) / image.rows);
+  const cv::Size fitted(std::max(1, cvRound(image.cols * s)), std::max(1, cvRound(image.rows * s)));
+  cv::Mat canvas(size_, image.type(), cv::Scalar::all(0));
+  cv::resize(image, canvas(cv::Rect((size_.width - fitted.width) / 2, (size_.height - fitted.height) / 2, fitted.width,
+                                    fitted.height)),
+             fitted, 0, 0, cv::INTER_AREA);
+  video_.write(canvas);
 }
 
 }  // namespace bodyrec

@@ -42,7 +42,8 @@ class MotWriter {
 
 // Annotated frames: a video when the path ends in .avi/.mp4/.mkv/.mov, else a directory of PNG files
 // named NNNNNN.png by frame index. The video is opened on the first frame (its size) and finalised in
-// the destructor.
+// the destructor; a later frame of another size (images of different sizes) is scaled to fit the video's
+// size, centred on black, so that every frame is in the video.
 class AnnotatedWriter {
  public:
   AnnotatedWriter(const std::string& path, double fps);
@@ -55,6 +56,7 @@ class AnnotatedWriter {
   double fps_;
   bool is_video_;
   cv::VideoWriter video_;
+  cv::Size size_;  // the video's frame size
 };
 
 // True when `path` names a video file by its extension.
