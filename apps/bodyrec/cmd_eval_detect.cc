@@ -78,6 +78,10 @@ struct EvalDetectCommand {
                                        evaluator.add_frame(detections, it == truth_by_frame.end() ? none : it->second);
                                      });
     const DetectionScores s = evaluator.scores();
+    // No truth in the frames processed: a score of 0 would read as a detector that found nobody.
+    if (s.ground_truth == 0 && photos.empty())
+      throw InputError(gt + ": no ground-truth box in the " + std::to_string(stats.frames) +
+                       " frames processed (is it this source's ground truth, and its frames?)");
     const double ms = stats.frames ? stats.detector_ms / stats.frames : 0.0;
     std::printf("detector      %s\n", people->describe().c_str());
     std::printf("frames        %d scored (of %d processed)\n", s.frames, stats.frames);

@@ -45,6 +45,10 @@ struct EvalRolesCommand {
                                     evaluator.add_frame(it->second, system);
                                   });
     const RoleScores s = evaluator.scores();
+    if (s.boxes == 0)
+      throw InputError(gt + ": no labelled box in the " + std::to_string(stats.frames) +
+                       " frames processed (its frames are " + std::to_string(labelled.begin()->first) + "-" +
+                       std::to_string(labelled.rbegin()->first) + ")");
     const double ms = stats.frames ? stats.total_ms() / stats.frames : 0.0;
     std::printf("roles         %s\n", to_string(groups.pipeline.roles));
     std::printf("frames        %d labelled frames scored (of %zu in %s; %d processed)\n", s.frames, labelled.size(),

@@ -49,6 +49,10 @@ struct EvalTrackCommand {
           evaluator.add_frame(hypotheses, it == truth_by_frame.end() ? none : it->second);
         });
     const TrackingScores s = evaluator.scores();
+    // No truth in the frames processed: MOTA would be a meaningless 0.
+    if (s.ground_truth == 0)
+      throw InputError(gt + ": no ground-truth box in the " + std::to_string(stats.frames) +
+                       " frames processed (is it this source's ground truth, and its frames?)");
     const double ms = stats.frames ? stats.processing_ms / stats.frames : 0.0;
     std::printf("detector      %s (every %d frames; %s in between)\n", people->describe().c_str(),
                 tracking.detect_every, tracking.between == BetweenDetections::kLocal ? "searched near tracks" : "predicted");

@@ -324,5 +324,23 @@ TEST(BadInput, FiveHundredAndZeroGroundTruthBoxesInAFrameAreScored) {
   EXPECT_LE(j["fn"].get<int>(), 501);
 }
 
+// Ground truth with nothing in the frames processed (another video's file, or the wrong frames) is an input
+// error, not a score of 0 that reads as a detector or tracker that found nobody.
+TEST(BadInput, GroundTruthOutsideTheFramesProcessedIsAnInputError) {
+  if (!fs::exists(vtest_path())) GTEST_SKIP() << "vtest.avi missing (opencv-doc)";
+  TempDir dir;
+  const std::string gt = (dir / "gt.txt").string(), roles = (dir / "roles.csv").string(), v = vtest_path().string();
+  write_text(gt, "500,1,10,10,30,90,1,1,1\n");
+  write_text(roles, "frame,x,y,w,h,role\n5000,1,2,3,4,leader\n");
+  expect_one_line_error(run_bodyrec({"eval", "detect", "--source", v, "--gt", gt, "--max-frames", "2", "--preset",
+                                     "thesis", "--levels", "1", "-q"}),
+                        3, gt + ": no ground-truth box in the 2 frames processed");
+  expect_one_line_error(run_bodyrec({"eval", "track", "--source", v, "--gt", gt, "--max-frames", "2", "--preset",
+                                     "thesis", "--levels", "1", "-q"}),
+                        3, gt + ": no ground-truth box in the 2 frames processed");
+  expect_one_line_error(run_bodyrec({"eval", "roles", "--source", v, "--gt", roles, "--max-frames", "2", "-q"}), 3,
+                        roles + ": no labelled box in the 2 frames processed (its frames are 5000-5000)");
+}
+
 }  // namespace
 }  // namespace bodyrec::testing
