@@ -8,8 +8,10 @@
 #include <nlohmann/json.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/core/model_files.h"
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/reid/appearance_matcher.h"
+#include "bodyrec/reid/learned_matcher.h"
 #include "bodyrec/reid/reid_eval.h"
 #include "command.h"
 #include "reid_dataset_options.h"
@@ -35,6 +37,12 @@ struct EvalReidCommand {
     if (model.empty() && !learn && (matcher == "lomo-xqda" || matcher == "default-full"))
       throw UsageError("matcher " + matcher + " learns: give --train-ids > 0 or --model");
     if (!learn) (void)make_matcher(matcher, model);
+    if (!learn && model.empty() && make_untrained_matcher(matcher)->learns())
+      std::fprintf(stderr,
+                   "bodyrec: note: %s is used as is on every person; the shipped one was trained on all 632 VIPeR "
+                   "people (models/README.md), so on VIPeR this scores its own training data, not accuracy: "
+                   "--train-ids N trains on each split's training people instead\n",
+                   find_model_file(kShippedReidModel).value_or(kShippedReidModel).c_str());
     const ReidDataset data = scan_reid_dataset(dataset.root, dataset.id_regex, dataset.cam_regex);
     eval.learn = learn;  // a given or shipped model is used as is in every split
     const std::string name = matcher, model_path = model;

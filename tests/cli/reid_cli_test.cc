@@ -241,6 +241,8 @@ TEST(TrainReidCli, TheDefaultModelIsFoundWithoutAFlag) {
   EXPECT_DOUBLE_EQ(last_json_line(e.out)["rank1"].get<double>(), 1.0);
   EXPECT_TRUE(contains(e.out, "matcher       variant ")) << e.out;
   EXPECT_FALSE(contains(e.out, "split 0")) << e.out;
+  // Scoring a model on the data it may have been trained on is said on stderr.
+  EXPECT_TRUE(contains(e.err, (dir / "reid-default.yml.gz").string() + " is used as is on every person")) << e.err;
   // The published recipe ships no model: online it needs --model.
   expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec.string(), "--bodies-from", "skeleton", "--max-frames",
                                      "5", "--matcher", "lomo-xqda"}),
