@@ -47,7 +47,17 @@ void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
   const std::vector<CLI::Option*> all = sub.get_options();
-  for (std::size_t i = before; i < all.size(); ++i) all[i]->group(group);
+  for (std::size_t i = before; i < all.size(); ++i) {
+    all[i]->group(group);
+    if (!all[i]->check_lname("colour-only") && !all[i]->check_lname("camera")) o.plain_camera_only.push_back(all[i]);
+  }
+}
+
+void refuse_plain_camera_options(const ColourCliOptions& options, const std::string& what) {
+  for (const CLI::Option* opt : options.plain_camera_only)
+    if (opt->count() > 0)
+      throw UsageError(opt->get_name() + " is for plain-camera input (a video, images, --camera or --colour-only); " +
+                       what + " is read as RGB-D");
 }
 
 bool is_colour_input(const std::string& path, const ColourCliOptions& options) {

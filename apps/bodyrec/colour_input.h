@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -33,7 +34,12 @@ struct ColourCliOptions {
   std::string calibration, homography;
   int history = ForegroundOptions{}.history;  // --background-history
   double image_fps = 25;     // --fps: the frame rate of an image sequence (its frames carry no times)
+  std::vector<const CLI::Option*> plain_camera_only;  // the options an RGB-D input does not read
 };
+
+// UsageError naming the first of options.plain_camera_only that was given: the input (`what`) is an RGB-D
+// recording or sensor, whose path does not read them.
+void refuse_plain_camera_options(const ColourCliOptions& options, const std::string& what);
 
 // --colour-only, (with `camera`) --camera, --detector, --detector-model and the HOG options, the tracker's
 // options, --body-mask, --shape-model, --calibration, --homography, --background-history, --fps; all in the help

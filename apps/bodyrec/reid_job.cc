@@ -115,6 +115,7 @@ ReidInput open_reid_input(const std::string& input, const ReidCliOptions& option
     return in;
   }
   if (options.colour.colour_only) throw UsageError("--colour-only reads a recording, not a sensor");
+  refuse_plain_camera_options(options.colour, live.sensor ? "the sensor" : input);
   if (!live.sensor && is_skeleton_file(input))
     throw InputError(input + ": re-identification needs a recording with colour and depth");
   ReidInput in{input, std::make_unique<OrientSource>(input, live), nullptr, nullptr};

@@ -170,6 +170,20 @@ TEST(ReidLiveCli, ASpooledEventOfAForgottenUserIsNeverPublished) {
   EXPECT_EQ(waiting.count(1), 0u);
 }
 
+// Plain-camera options given for an RGB-D recording would be ignored: each is a usage error naming it.
+TEST(ReidLiveCli, PlainCameraOptionsOnAnRgbdRecordingAreRefused) {
+  TempDir dir;
+  const std::string rec = short_walk().string(), gallery = (dir / "g.db").string();
+  expect_one_line_error(run_bodyrec({"reid", rec, "--gallery", gallery, "--detector", "hog"}), 2,
+                        "--detector is for plain-camera input (a video, images, --camera or --colour-only); " + rec +
+                            " is read as RGB-D");
+  expect_one_line_error(run_bodyrec({"reid", rec, "--gallery", gallery, "--calibration", "c.xml"}), 2, "--calibration");
+  expect_one_line_error(run_bodyrec({"eval", "reid-stream", rec, "--min-hits", "2"}), 2, "--min-hits");
+  EXPECT_FALSE(fs::exists(gallery));
+  const RunResult colour = run_bodyrec({"reid", rec, "--gallery", gallery, "--colour-only", "--min-hits", "2", "-q"});
+  EXPECT_EQ(colour.exit_code, 0) << colour.err;
+}
+
 TEST(ReidLiveCli, SensorWithoutADeviceIsOneLineAndExit3) {
   TempDir dir;
   expect_one_line_error(run_bodyrec({"reid", "--sensor", "--gallery", (dir / "g.db").string()}), 3, "sensor");
