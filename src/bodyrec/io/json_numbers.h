@@ -20,7 +20,8 @@ double round_significant(double v, int digits = kJsonDigits);
 // A copy of `value` with every floating-point number (at any depth) rounded by round_significant.
 nlohmann::json round_numbers(const nlohmann::json& value, int digits = kJsonDigits);
 
-// round_numbers(value).dump(): one line of JSON.
+// round_numbers(value).dump(), one line of JSON, except that each number is written as the shortest text
+// that reads back to it (nlohmann's dump() sometimes is not: 8.735290000000001 for 8.73529).
 std::string json_text(const nlohmann::json& value);
 
 }  // namespace bodyrec

@@ -57,4 +57,15 @@ TEST(JsonNumbers, JsonlWriterRoundsItsLines) {
 }
 
 }  // namespace
+// nlohmann's dump() writes some doubles with 16-17 digits (8.735290000000001); json_text writes the
+// shortest text that reads back, in nlohmann's layout.
+TEST(JsonNumbers, JsonTextWritesTheShortestNumbers) {
+  EXPECT_EQ(nlohmann::json(8.73529).dump(), "8.735290000000001");  // why json_text has its own writer
+  EXPECT_EQ(json_text(nlohmann::json{{"ms", 8.73529}, {"q", 0.874778}}), "{\"ms\":8.73529,\"q\":0.874778}");
+  EXPECT_EQ(json_text(nlohmann::json::array({100.0, 1e-05, 1e20, -2.5, 0.0, 1733312345.25, 3})),
+            "[100.0,1e-05,1e+20,-2.5,0.0,1733312345.25,3]");
+  EXPECT_EQ(json_text(nlohmann::json{{"s", "a\"b"}, {"n", nullptr}, {"t", true}, {"inf", HUGE_VAL}}),
+            "{\"inf\":null,\"n\":null,\"s\":\"a\\\"b\",\"t\":true}");
+}
+
 }  // namespace bodyrec
