@@ -20,7 +20,7 @@ const std::map<std::string, std::string> kFlagOf = {
     {"MaskNetTrainOptions.threshold", "--mask-threshold"}, {"ContourSetOptions.pennfudan_dir", "--pennfudan"},
     {"ContourSetOptions.out_dir", "--out"},           {"DifferentialMotionOptions.work_width", "--motion-width"},
     {"GroupOptions.evidence_half_life_s", "--half-life"}, {"GroupOptions.min_moving_fraction", "--min-moving"},
-    {"ForegroundOptions.history", "--background-history"},
+    {"ForegroundOptions.history", "--background-history"}, {"HogOptions.local_region_margin", "--local-margin"},
 };
 
 // The innermost subcommand that was parsed (bodyrec -> eval -> reid).

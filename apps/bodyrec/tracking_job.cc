@@ -42,10 +42,13 @@ std::vector<CLI::Option*> add_tracker_options(CLI::App& sub, TrackingJobOptions&
                  "Least detector score to start a track (weaker ones only extend tracks)")
       ->capture_default_str();
   sub.add_option("--kf-position-noise", t.noise.position, "Kalman position noise per frame, times box height")
+      ->check(positive())
       ->capture_default_str();
   sub.add_option("--kf-velocity-noise", t.noise.velocity, "Kalman velocity noise per frame, times box height")
+      ->check(positive())
       ->capture_default_str();
   sub.add_option("--kf-measurement-noise", t.noise.measurement, "Kalman measurement noise, times box height")
+      ->check(positive())
       ->capture_default_str();
   const std::vector<CLI::Option*> all = sub.get_options();  // in the order they were added
   return {all.begin() + static_cast<std::ptrdiff_t>(before), all.end()};

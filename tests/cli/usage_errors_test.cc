@@ -115,6 +115,8 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"detect", v, "--scale", "fast"}, "--scale: fast is not a number");
   expect_usage_error({"detect", v, "--preset", "fast"}, "--preset: 'fast' is not one of auto, default, photo, foreground, thesis, opencv");
   expect_usage_error({"detect", v, "--motion", "sometimes"}, "--motion: 'sometimes' is not one of on, off, preset");
+  expect_usage_error({"track", v, "--kf-velocity-noise", "0"}, "--kf-velocity-noise: 0 is not a positive number");
+  expect_usage_error({"track", v, "--local-margin", "5"}, "--local-margin must be in [0, 2]");
   // A dlib fHOG model is its own detector: HOG's settings given with it would be silently ignored.
   expect_usage_error({"detect", v, "--model", "people.svm", "--preset", "thesis"},
                      "a dlib fHOG model is its own detector: --preset takes no value with it");
