@@ -7,6 +7,7 @@
 
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
+#include "frame_errors.h"
 #include "run_sinks.h"
 #include "stop_signal.h"
 
@@ -23,7 +24,7 @@ DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, c
   Frame frame;
   while (!StopOnSignal::requested() && source.read(frame)) {
     const auto t0 = std::chrono::steady_clock::now();
-    const std::vector<Detection> detections = detector.detect(frame.image);
+    const std::vector<Detection> detections = naming_frame(frame, [&] { return detector.detect(frame.image); });
     stats.detector_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     ++stats.frames;
 

@@ -10,6 +10,7 @@
 #include "bodyrec/io/progress.h"
 #include "bodyrec/io/sinks.h"
 #include "enum_option.h"
+#include "frame_errors.h"
 #include "option_checks.h"
 #include "run_sinks.h"
 #include "stop_signal.h"
@@ -171,7 +172,7 @@ GroupsRunStats run_groups(FrameSource& source, PeopleDetector& detector, const G
   Progress progress(source.frame_count(), outputs.quiet);
   GroupsRunStats stats;
   for (Frame frame; !StopOnSignal::requested() && source.read(frame);) {
-    const GroupPipelineResult r = pipeline.process(frame);
+    const GroupPipelineResult r = naming_frame(frame, [&] { return pipeline.process(frame); });
     ++stats.frames;
     stats.tracking_ms += r.tracking_ms;
     stats.stages.motion += r.groups.ms.motion;

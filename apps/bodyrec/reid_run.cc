@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "bodyrec/reid/colour_truth.h"
+#include "frame_errors.h"
 #include "reid_job.h"
 
 namespace bodyrec::cli {
@@ -124,7 +125,7 @@ ReidRunStats run_colour_reid(ReidInput& input, const ReidCliOptions& options, Re
                                    rf.index = f.index;
                                    rf.time_s = f.time_s;
                                    rf.color = f.image;
-                                   process(rf, f, arrival);
+                                   naming_frame(f, [&] { process(rf, f, arrival); });
                                  });
   } else {
     OrientSource& source = *input.source;

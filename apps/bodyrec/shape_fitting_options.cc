@@ -1,6 +1,7 @@
 #include "shape_fitting_options.h"
 
 #include "bodyrec/core/model_files.h"
+#include "option_checks.h"
 
 namespace bodyrec::cli {
 
@@ -27,11 +28,13 @@ void add_shape_model_option(CLI::App& sub, std::string& path) {
 void add_shape_fitting_options(CLI::App& sub, ShapeFittingOptions& options) {
   sub.add_option("--mask-threshold", options.mask_threshold,
                  "mask-net models: the logit above which a pixel is body, instead of the model's (tune it on a "
-                 "held-out set)");
+                 "held-out set); beyond +-20 the network's output is saturated")
+      ->check(in_range(-20, 20));
   sub.add_option("--threshold-offsets", options.threshold_offsets,
                  "mask-net models: average each landmark over the outlines at the threshold plus each of these "
                  "logits (default -2,-1,0,1,2; 0 = one outline: faster, less accurate)")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(in_range(-20, 20));
   sub.add_flag("--no-mirror", options.no_mirror,
                "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
                "image's (half the network passes: faster, slightly less accurate)");

@@ -8,6 +8,7 @@
 #include "bodyrec/io/annotate.h"
 #include "bodyrec/io/progress.h"
 #include "enum_option.h"
+#include "frame_errors.h"
 #include "option_checks.h"
 #include "run_sinks.h"
 #include "stop_signal.h"
@@ -66,7 +67,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
   Frame frame;
   while (!StopOnSignal::requested() && source.read(frame)) {
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<TrackedPerson> tracks = tracking.step(frame.index, frame.image);
+    std::vector<TrackedPerson> tracks = naming_frame(frame, [&] { return tracking.step(frame.index, frame.image); });
     const bool detect = tracking.last_was_full();
     if (detect) ++stats.detected_frames;
     // Same precision as every sink writes, so results re-read from a file score the same.

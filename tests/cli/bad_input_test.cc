@@ -342,5 +342,18 @@ TEST(BadInput, GroundTruthOutsideTheFramesProcessedIsAnInputError) {
                         roles + ": no labelled box in the 2 frames processed (its frames are 5000-5000)");
 }
 
+// A frame of another size than the first in an image folder: the error names that file.
+TEST(BadInput, AFrameOfAnotherSizeNamesItsFile) {
+  TempDir dir;
+  fs::create_directories(dir / "frames");
+  for (int i = 0; i < 3; ++i)
+    cv::imwrite((dir / "frames" / ("00" + std::to_string(i) + ".png")).string(),
+                cv::Mat(i == 2 ? 100 : 90, 120, CV_8UC3, cv::Scalar(40 * i, 90, 160)));
+  const std::string odd = (dir / "frames" / "002.png").string();
+  expect_one_line_error(run_bodyrec({"groups", (dir / "frames").string(), "-q", "--jsonl", (dir / "g.jsonl").string()}),
+                        3, odd + ": motion: frame size changed");
+  expect_frames_written(dir / "g.jsonl", 2);
+}
+
 }  // namespace
 }  // namespace bodyrec::testing

@@ -117,6 +117,8 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"detect", v, "--motion", "sometimes"}, "--motion: 'sometimes' is not one of on, off, preset");
   expect_usage_error({"track", v, "--kf-velocity-noise", "0"}, "--kf-velocity-noise: 0 is not a positive number");
   expect_usage_error({"track", v, "--local-margin", "5"}, "--local-margin must be in [0, 2]");
+  expect_usage_error({"landmark", v, "--mask-threshold", "1e9"}, "--mask-threshold: 1e9 is not in [-20, 20]");
+  expect_usage_error({"landmark", v, "--threshold-offsets", "0,100"}, "--threshold-offsets: 100 is not in [-20, 20]");
   // A dlib fHOG model is its own detector: HOG's settings given with it would be silently ignored.
   expect_usage_error({"detect", v, "--model", "people.svm", "--preset", "thesis"},
                      "a dlib fHOG model is its own detector: --preset takes no value with it");
