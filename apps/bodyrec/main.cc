@@ -2,6 +2,7 @@
 // This file only wires the registered subcommands together and maps errors to exit codes.
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
@@ -21,6 +22,14 @@ namespace {
 void quiet_library_logs() {
   if (!std::getenv("OPENCV_LOG_LEVEL")) cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET
+}
+
+// Errors are one line: libraries' messages (OpenNI2's, OpenCV's) may carry tabs and newlines.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  const size_t end = text.find_last_not_of(' ');
+  return end == std::string::npos ? text : text.substr(0, end + 1);
 }
 
 }  // namespace
@@ -56,13 +65,13 @@ int main(int argc, char** argv) {
     std::cerr << "bodyrec: error: " << bodyrec::cli::option_error_text(e, app) << "\n";
     return static_cast<int>(e.code());
   } catch (const bodyrec::Error& e) {
-    std::cerr << "bodyrec: error: " << e.what() << "\n";
+    std::cerr << "bodyrec: error: " << one_line(e.what()) << "\n";
     return static_cast<int>(e.code());
   } catch (const cv::Exception& e) {
-    std::cerr << "bodyrec: error: OpenCV: " << e.err << " (in " << e.func << ")\n";
+    std::cerr << "bodyrec: error: OpenCV: " << one_line(e.err) << " (in " << e.func << ")\n";
     return static_cast<int>(bodyrec::ExitCode::kProcessing);
   } catch (const std::exception& e) {
-    std::cerr << "bodyrec: error: " << e.what() << "\n";
+    std::cerr << "bodyrec: error: " << one_line(e.what()) << "\n";
     return static_cast<int>(bodyrec::ExitCode::kProcessing);
   }
   return 0;

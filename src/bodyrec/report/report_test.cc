@@ -329,6 +329,9 @@ TEST(ReportParse, BrokenRunsNameFileAndLine) {
   EXPECT_EQ(parse("[1,2]"), "x.jsonl:1: row is not a JSON object");
   EXPECT_EQ(parse("{\"frame\":0}"), "x.jsonl:1: neither 'people' (groups run) nor 'bodies' (re-identification run)");
   EXPECT_EQ(parse("{\"people\":[]}"), "x.jsonl:1: missing field 'frame'");
+  EXPECT_EQ(parse("{\"frame\":4,\"people\":[{\"box\":[0,115,35,240],\"height_m\":1.6,\"pixels\":3360}]}"),
+            "x.jsonl:1: a person without 'id': not a groups run (report reads the --jsonl of groups or reid, not of "
+            "segment or landmark)");
   EXPECT_EQ(parse("{\"frame\":0,\"people\":[{\"id\":1,\"box\":[1,2]}]}"), "x.jsonl:1: field 'box' is not [x, y, w, h]");
   EXPECT_EQ(parse("{\"frame\":0,\"people\":[]}\n{\"frame\":1,\"bodies\":[]}"),
             "x.jsonl:2: a re-identification row in a groups run");

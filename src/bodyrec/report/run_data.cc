@@ -67,6 +67,10 @@ GroupsFrameRow groups_row(const json& row, const Where& w) {
   r.time = row.contains("time") ? w.number(row, "time") : 0.0;
   for (const auto& p : w.array(row, "people")) {
     GroupsPerson person;
+    // segment and landmark lines also list "people", without track ids: not runs a report is made of.
+    if (p.is_object() && !p.contains("id"))
+      w.fail("a person without 'id': not a groups run (report reads the --jsonl of groups or reid, not of "
+             "segment or landmark)");
     person.id = w.integer(p, "id");
     person.box = w.box(p, "box");
     person.role = w.text(p, "role", "unknown");
