@@ -165,22 +165,20 @@ void prune(const GalleryCommand& c) {
     throw UsageError("--unseen-for: " + c.unseen_for + " would erase everyone; to do that, run purge --yes");
   Gallery g = c.open(c.dry_run);
   const GalleryTime now = GalleryClock::now();
+  // "N users not seen since T: 1 2 3"
+  const auto who = [&](const std::vector<UserId>& users) {
+    std::string text = std::to_string(users.size()) + " users not seen since " + format_utc(now - unseen);
+    for (size_t i = 0; i < users.size(); ++i) text += (i == 0 ? ": " : " ") + std::to_string(users[i]);
+    return text;
+  };
   if (c.dry_run) {
-    std::vector<UserId> going;
-    for (const User& u : g.users())
-      if (u.last_seen < now - unseen) going.push_back(u.id);
-    std::string ids;
-    for (UserId u : going) ids += (ids.empty() ? "" : " ") + std::to_string(u);
-    std::printf("would prune %zu users not seen since %s%s%s (nothing erased)\n", going.size(),
-                format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str());
+    const std::vector<UserId> going = g.users_unseen_since(now - unseen);
+    std::printf("would prune %s (nothing erased)\n", who(going).c_str());
     if (c.json) std::printf("%s\n", json_text({{"users", going}, {"dry_run", true}}).c_str());
     return;
   }
   const EraseReport r = g.prune_unseen(unseen, now);
-  std::string ids;
-  for (UserId u : r.users) ids += (ids.empty() ? "" : " ") + std::to_string(u);
-  std::printf("pruned %zu users not seen since %s%s%s: erased %s\n", r.users.size(),
-              format_utc(now - unseen).c_str(), ids.empty() ? "" : ": ", ids.c_str(), erased_summary(r).c_str());
+  std::printf("pruned %s: erased %s\n", who(r.users).c_str(), erased_summary(r).c_str());
   note_scrub(r);
   if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
 }

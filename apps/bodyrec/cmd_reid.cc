@@ -96,12 +96,9 @@ struct ReidCommand {
       }
       if (text && !f.step.events.empty()) std::fflush(stdout);  // as they happen, also into a pipe
       if (lines) lines->write(reid_frame_json(f, last_frame + 1, last_time));
-      bool erased = false;
-      for (auto u = published.begin(); u != published.end();) {
-        erased |= !exists(*u);
-        u = exists(*u) ? std::next(u) : published.erase(u);
-      }
-      if (erased) events.withdraw_erased(exists);
+      const size_t before = published.size();
+      for (auto u = published.begin(); u != published.end();) u = exists(*u) ? std::next(u) : published.erase(u);
+      if (published.size() < before) events.withdraw_erased(exists);
     });
     const nlohmann::json delivery = events.finish();
     const int frames = stats.frames;

@@ -94,19 +94,22 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
     throw UsageError("--roi: " + std::to_string(o.roi[2]) + "x" + std::to_string(o.roi[3]) +
                      " is not a region (width and height must be positive)");
   auto given = [](const CLI::Option* opt) { return opt && opt->count() > 0; };
-  // Options only HOG reads: given with another detector they are refused rather than ignored.
+  // Options only HOG reads.
   const std::vector<const CLI::Option*> hog_only = {o.o_hog_model, o.o_hit,    o.o_stride,       o.o_padding,
                                                     o.o_scale,     o.o_group,  o.o_resize,       o.o_levels,
                                                     o.o_adapt,     o.o_motion_margin, o.o_local_margin,
                                                     o.o_local_height_margin};
+  // Refused rather than ignored when another detector runs; `instead` says which.
+  const auto refuse_hog_options = [&](const std::string& instead) {
+    for (const CLI::Option* opt : hog_only)
+      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; " + instead);
+    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; " + instead);
+  };
   if (!o.model_file.empty()) {
     if (o.preset != DetectorPreset::kAuto)
       throw UsageError("a dlib fHOG model is its own detector: --preset takes no value with it");
-    for (const CLI::Option* opt : hog_only)
-      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; a dlib fHOG model takes none");
-    if (o.roi.size() == 4 || o.motion != MotionChoice::kPreset)
-      throw UsageError(std::string(o.roi.size() == 4 ? "--roi" : "--motion") +
-                       " is a HOG option; a dlib fHOG model takes none");
+    refuse_hog_options("a dlib fHOG model takes none");
+    if (o.motion != MotionChoice::kPreset) throw UsageError("--motion is a HOG option; a dlib fHOG model takes none");
     FhogOptions f;
     f.model_path = o.model_file;
     f.upsample = o.fhog_upsample;
@@ -126,9 +129,7 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
     const bool photo = preset == DetectorPreset::kPhoto;
     const std::string name = photo ? "photo" : "foreground";
     const std::string which = photo ? "the DPM detector" : "background subtraction";
-    for (const CLI::Option* opt : hog_only)
-      if (given(opt)) throw UsageError(opt->get_name() + " is a HOG option; --preset " + name + " uses " + which);
-    if (o.roi.size() == 4) throw UsageError("--roi is a HOG option; --preset " + name + " uses " + which);
+    refuse_hog_options("--preset " + name + " uses " + which);
     if (o.motion == MotionChoice::kOn)
       throw UsageError("--motion on needs a HOG preset; --preset " + name + " uses " + which);
   }

@@ -24,14 +24,6 @@ void quiet_library_logs() {
   setenv("OPENCV_FFMPEG_LOGLEVEL", "-8", 0);  // AV_LOG_QUIET
 }
 
-// Errors are one line: libraries' messages (OpenNI2's, OpenCV's) may carry tabs and newlines.
-std::string one_line(std::string text) {
-  for (char& c : text)
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-  const size_t end = text.find_last_not_of(' ');
-  return end == std::string::npos ? text : text.substr(0, end + 1);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,13 +57,13 @@ int main(int argc, char** argv) {
     std::cerr << "bodyrec: error: " << bodyrec::cli::option_error_text(e, app) << "\n";
     return static_cast<int>(e.code());
   } catch (const bodyrec::Error& e) {
-    std::cerr << "bodyrec: error: " << one_line(e.what()) << "\n";
+    std::cerr << "bodyrec: error: " << bodyrec::cli::one_line(e.what()) << "\n";
     return static_cast<int>(e.code());
   } catch (const cv::Exception& e) {
-    std::cerr << "bodyrec: error: OpenCV: " << one_line(e.err) << " (in " << e.func << ")\n";
+    std::cerr << "bodyrec: error: OpenCV: " << bodyrec::cli::one_line(e.err) << " (in " << e.func << ")\n";
     return static_cast<int>(bodyrec::ExitCode::kProcessing);
   } catch (const std::exception& e) {
-    std::cerr << "bodyrec: error: " << one_line(e.what()) << "\n";
+    std::cerr << "bodyrec: error: " << bodyrec::cli::one_line(e.what()) << "\n";
     return static_cast<int>(bodyrec::ExitCode::kProcessing);
   }
   return 0;

@@ -140,10 +140,15 @@ CLI::Validator one_of(std::vector<std::string> choices) {
 
 void check_numbers_everywhere(CLI::App& app) { add_number_checks(app); }
 
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  const size_t end = text.find_last_not_of(' ');
+  return end == std::string::npos ? text : text.substr(0, end + 1);
+}
+
 std::string usage_message(const CLI::ParseError& error, const CLI::App& app) {
-  std::string m = error.what();
-  for (char& c : m)
-    if (c == '\n' || c == '\r') c = ' ';
+  std::string m = one_line(error.what());
   std::smatch g;
   const auto matches = [&](const char* pattern) { return std::regex_match(m, g, std::regex(pattern)); };
 

@@ -26,6 +26,9 @@ CLI::Validator one_of(std::vector<std::string> choices);
 // tree is built, before parsing.
 void check_numbers_everywhere(CLI::App& app);
 
+// `text` on one line: newlines, carriage returns and tabs become spaces, trailing spaces go.
+std::string one_line(std::string text);
+
 // One line for a CLI11 parse error (without the "bodyrec: error: " prefix): the option and the value at
 // fault in plain words. `app` is the root, parsed (or partly parsed) when `error` was thrown: an unknown
 // or missing command is named with the level it is missing at ("bodyrec eval").

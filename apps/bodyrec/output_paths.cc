@@ -30,7 +30,7 @@ bool same_path(const std::string& a, const std::string& b) {
 }
 
 void check_subtree(CLI::App& app) {
-  // Chained after whatever the command set itself, so that nothing it relies on is lost.
+  // Commands set only their final callback(), which runs after this one.
   app.parse_complete_callback([&app] { check_output_paths(app); });
   for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) check_subtree(*sub);
 }

@@ -114,7 +114,7 @@ class Gallery : public GalleryCache {
   EraseReport forget(UserId user);
   // Erases every user, scan and event; same scrubbing.
   EraseReport purge();
-  // Retention: forgets every user whose last_seen is before now - unseen_for.
+  // Retention: forgets every user whose last_seen is before now - unseen_for (users_unseen_since).
   EraseReport prune_unseen(std::chrono::seconds unseen_for, GalleryTime now = GalleryClock::now());
 
   // Runs `body` as one transaction: the writes inside it commit together or not at all (the pipeline
@@ -156,6 +156,7 @@ class Gallery : public GalleryCache {
   std::vector<StoredScan> user_scans(UserId user);  // with pixels, in view order
   std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
   int user_count();
+  std::vector<UserId> users_unseen_since(GalleryTime since);  // last_seen before `since`, by id
   int64_t scan_count();         // stored scans
   int64_t scans_with_images();  // stored scans that hold body pixels (an image)
 

@@ -58,6 +58,14 @@ std::optional<User> Gallery::user(UserId id) {
 
 int Gallery::user_count() { return static_cast<int>(db_->query_int("SELECT count(*) FROM users")); }
 
+std::vector<UserId> Gallery::users_unseen_since(GalleryTime since) {
+  sql::Statement s(*db_, "SELECT id FROM users WHERE last_seen_ms < ?1 ORDER BY id");
+  s.bind(1, to_unix_ms(since));
+  std::vector<UserId> ids;
+  while (s.step()) ids.push_back(s.column_int(0));
+  return ids;
+}
+
 int64_t Gallery::scan_count() { return db_->query_int("SELECT count(*) FROM scans"); }
 
 int64_t Gallery::scans_with_images() {

@@ -224,11 +224,7 @@ EraseReport Gallery::prune_unseen(std::chrono::seconds unseen_for, GalleryTime n
   if (depth_ > 0) throw ProcessingError(path_ + ": prune cannot run inside a transaction");
   EraseReport report;
   transaction([&] {
-    std::vector<UserId> stale;
-    sql::Statement s(*db_, "SELECT id FROM users WHERE last_seen_ms < ?1 ORDER BY id");
-    s.bind(1, to_unix_ms(now - unseen_for));
-    while (s.step()) stale.push_back(s.column_int(0));
-    s.reset();
+    const std::vector<UserId> stale = users_unseen_since(now - unseen_for);
     for (UserId u : stale) erase_user(u, report);
     if (!stale.empty()) {
       Event e;
