@@ -98,28 +98,39 @@ TEST(ContourCli, LandmarksWithCameraSpacePointsAndAnnotatedImages) {
   }
 }
 
+// A depth-only recording of `frames` frames of a wall 3 m away.
+void write_flat_depth_recording(const std::filesystem::path& dir, int frames) {
+  RecordingMeta meta;
+  meta.sensor = "test";
+  meta.depth = meta.color = kinect2_depth_intrinsics();
+  meta.streams.depth = true;
+  RecordingWriter w(dir.string(), meta);
+  RgbdFrame f;
+  f.depth = cv::Mat(424, 512, CV_16U, cv::Scalar(3000));
+  for (int i = 0; i < frames; ++i) w.write(f);
+}
+
 TEST(SegmentCli, BrokenInputsExitWithThreeAndNameTheFile) {
   TempDir dir;
   RunResult r = run_bodyrec({"segment", (dir / "missing").string()});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "missing")) << r.err;
   // A recording whose depth file of frame 1 is corrupt: frame 0's line is still written.
-  {
-    RecordingMeta meta;
-    meta.sensor = "test";
-    meta.depth = meta.color = kinect2_depth_intrinsics();
-    meta.streams.depth = true;
-    RecordingWriter w((dir / "rec").string(), meta);
-    RgbdFrame f;
-    f.depth = cv::Mat(424, 512, CV_16U, cv::Scalar(3000));
-    w.write(f);
-    w.write(f);
-  }
+  write_flat_depth_recording(dir / "rec", 2);
   write_text(dir / "rec" / "depth" / "000001.png", "not a png");
   r = run_bodyrec({"segment", (dir / "rec").string(), "--jsonl", (dir / "out.jsonl").string()});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_TRUE(contains(r.err, "000001.png")) << r.err;
   EXPECT_TRUE(contains(read_text(dir / "out.jsonl"), "\"frame\":0"));
+  // A recording long enough for the background pre-pass (10 frames or more), broken at frame 5: the
+  // pre-pass learns from the frames it can read, and frames 0-4 are written before the error.
+  write_flat_depth_recording(dir / "long", 12);
+  write_text(dir / "long" / "depth" / "000005.png", "not a png");
+  r = run_bodyrec({"segment", (dir / "long").string(), "--jsonl", (dir / "long.jsonl").string()});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_TRUE(contains(r.err, "000005.png")) << r.err;
+  const std::string lines = read_text(dir / "long.jsonl");
+  EXPECT_EQ(std::count(lines.begin(), lines.end(), '\n'), 5) << lines;
   // eval segment needs a body index.
   r = run_bodyrec({"eval", "segment", (dir / "rec").string()});
   EXPECT_EQ(r.exit_code, 3);

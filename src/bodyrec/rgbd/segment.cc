@@ -361,11 +361,18 @@ bool learn_recording_background(const RecordingReader& reader, DepthSegmenter& s
   const int n = reader.frame_count();
   if (n < min_frames || !reader.meta().streams.depth || samples < 1) return false;
   const int take = std::min(samples, n);
+  int learnt = 0;
   for (int s = 0; s < take; ++s) {
-    const RgbdFrame f = reader.read_frame(static_cast<int>(static_cast<long>(s) * n / take));
-    segmenter.learn_background(f.depth);
+    // A frame that cannot be read is left out here: the pass over the frames stops at it with its
+    // error, after writing out the frames before it.
+    try {
+      const RgbdFrame f = reader.read_frame(static_cast<int>(static_cast<long>(s) * n / take));
+      segmenter.learn_background(f.depth);
+      ++learnt;
+    } catch (const InputError&) {
+    }
   }
-  return true;
+  return learnt > 0;
 }
 
 nlohmann::json segmentation_to_json(int frame, const Segmentation& s) {

@@ -84,7 +84,8 @@ class RecordingReader;
 
 // Learns `segmenter`'s background from up to `samples` frames spread evenly over the recording, but only
 // when it has at least `min_frames` frames (a single frame would learn the people as background).
-// Returns whether a background was learnt. Reads frames by random access; InputError as the reader.
+// Returns whether a background was learnt. Reads frames by random access; frames the reader cannot read
+// (InputError) are left out, so that a broken frame stops the caller's own pass, not this one.
 bool learn_recording_background(const RecordingReader& reader, DepthSegmenter& segmenter, int samples = 60,
                                 int min_frames = 10);
 
