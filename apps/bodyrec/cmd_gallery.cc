@@ -3,6 +3,9 @@
 // SQLite file and on a PostgreSQL database (issue 47). Only `init` creates a gallery: elsewhere a missing
 // file or an empty database is an input error.
 #include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +15,7 @@
 #include "bodyrec/store/gallery_export.h"
 #include "bodyrec/store/gallery_json.h"
 #include "command.h"
+#include "event_options.h"
 #include "gallery_options.h"
 
 namespace bodyrec::cli {
@@ -20,6 +24,7 @@ namespace {
 struct GalleryCommand {
   GalleryCliOptions gallery;
   std::string user, dir, unseen_for, label;
+  std::vector<std::string> spools;  // --events-spool: files to take the erased users' events out of
   bool json = false, yes = false, dry_run = false;
 
   Gallery open(bool read_only, bool create = false) const {
@@ -35,9 +40,16 @@ std::string erased_summary(const EraseReport& r) {
          " masks, their features), " + std::to_string(r.events) + " events";
 }
 
-nlohmann::json erase_json(const EraseReport& r) {
-  return {{"users", r.users},   {"scans", r.scans},   {"images", r.images},         {"masks", r.masks},
-          {"events", r.events}, {"scrubbed", r.scrubbed}, {"checkpointed", r.checkpointed}};
+nlohmann::json erase_json(const EraseReport& r, const nlohmann::json& spools) {
+  return {{"users", r.users},   {"scans", r.scans},       {"images", r.images},
+          {"masks", r.masks},   {"events", r.events},     {"scrubbed", r.scrubbed},
+          {"checkpointed", r.checkpointed}, {"spools", spools}};
+}
+
+// Every --events-spool names a spool file: checked before anything is erased.
+void check_spools(const GalleryCommand& c) {
+  for (const std::string& path : c.spools)
+    if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": no event spool there (--events-spool)");
 }
 
 // "vacuumed" when the database was rewritten without the erased rows (gallery.h).
@@ -121,16 +133,19 @@ void export_command(const GalleryCommand& c) {
 }
 
 void forget(const GalleryCommand& c) {
+  check_spools(c);
   Gallery g = c.open(false);
   const UserId id = g.resolve_user(c.user);
   const EraseReport r = g.forget(id);
   std::printf("forgot user %lld: erased %s; %s %s\n", static_cast<long long>(id), erased_summary(r).c_str(),
               c.gallery.path.c_str(), vacuumed(r));
   note_scrub(r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
+  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
 }
 
 void purge(const GalleryCommand& c) {
+  check_spools(c);
   Gallery g = c.open(false);
   if (!c.yes)
     throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.gallery.path +
@@ -139,7 +154,8 @@ void purge(const GalleryCommand& c) {
   std::printf("purged %s: erased %zu users, %s; %s\n", c.gallery.path.c_str(), r.users.size(),
               erased_summary(r).c_str(), vacuumed(r));
   note_scrub(r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
+  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
 }
 
 void label(const GalleryCommand& c) {
@@ -163,6 +179,7 @@ void prune(const GalleryCommand& c) {
   const auto unseen = parse_retention(c.unseen_for, "--unseen-for");
   if (unseen.count() <= 0)
     throw UsageError("--unseen-for: " + c.unseen_for + " would erase everyone; to do that, run purge --yes");
+  check_spools(c);
   Gallery g = c.open(c.dry_run);
   const GalleryTime now = GalleryClock::now();
   // "N users not seen since T: 1 2 3"
@@ -180,7 +197,14 @@ void prune(const GalleryCommand& c) {
   const EraseReport r = g.prune_unseen(unseen, now);
   std::printf("pruned %s: erased %s\n", who(r.users).c_str(), erased_summary(r).c_str());
   note_scrub(r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r)).c_str());
+  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
+}
+
+void add_spool_option(CLI::App& sub, GalleryCommand& c) {
+  sub.add_option("--events-spool", c.spools,
+                 "Also take the erased users' undelivered events out of this reid event spool file (repeatable; "
+                 "one a running reid holds is left to it: it withdraws them itself)");
 }
 
 void add(CLI::App& app) {
@@ -224,7 +248,8 @@ void add(CLI::App& app) {
 
   sub = gallery->add_subcommand("forget", "Erase every image, feature and event of one user (database vacuumed)");
   sub->add_option("USER", c->user, "User id or label")->required();
-  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  add_spool_option(*sub, *c);
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events, spools}");
   sub->callback([c] { forget(*c); });
 
   sub = gallery->add_subcommand("label", "Name a user (the name show, export and forget accept); an empty LABEL removes it");
@@ -235,7 +260,8 @@ void add(CLI::App& app) {
 
   sub = gallery->add_subcommand("purge", "Erase every user (asks for --yes)");
   sub->add_flag("--yes", c->yes, "Really erase everything");
-  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  add_spool_option(*sub, *c);
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events, spools}");
   sub->callback([c] { purge(*c); });
 
   sub = gallery->add_subcommand("prune", "Retention: erase users not seen for a given time");
@@ -244,7 +270,8 @@ void add(CLI::App& app) {
                   "a recording's time, not when it was processed")
       ->required();
   sub->add_flag("--dry-run", c->dry_run, "Only list the users it would erase");
-  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events}");
+  add_spool_option(*sub, *c);
+  sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events, spools}");
   sub->footer("Example: bodyrec gallery prune --unseen-for 30d");
   sub->callback([c] { prune(*c); });
 }

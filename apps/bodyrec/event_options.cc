@@ -2,11 +2,13 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/events/event_spool.h"
 #include "bodyrec/io/json_numbers.h"
 #include "option_checks.h"
 
@@ -101,14 +103,37 @@ void RunEvents::publish(nlohmann::json payload) {
   publisher->publish(topic, json_text(payload));
 }
 
+std::optional<int64_t> event_user(const std::string& payload) {
+  const auto j = nlohmann::json::parse(payload, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return std::nullopt;
+  const auto user = j.find("user");
+  if (user == j.end() || !user->is_number_integer()) return std::nullopt;
+  return user->get<int64_t>();
+}
+
 size_t RunEvents::withdraw_erased(const std::function<bool(int64_t user)>& exists) {
   if (!publisher) return 0;
   return publisher->withdraw([&](const std::string& payload) {
-    const auto j = nlohmann::json::parse(payload, nullptr, false);
-    if (j.is_discarded() || !j.is_object()) return false;
-    const auto user = j.find("user");
-    return user != j.end() && user->is_number_integer() && !exists(user->get<int64_t>());
+    const std::optional<int64_t> user = event_user(payload);
+    return user && !exists(*user);
   });
+}
+
+nlohmann::json scrub_spools(const std::vector<std::string>& spools, const std::vector<int64_t>& erased) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const std::string& path : spools) {
+    const SpoolScrub s = EventSpool::scrub(path, [&](const SpooledEvent& e) {
+      const std::optional<int64_t> user = event_user(e.payload);
+      return user && std::find(erased.begin(), erased.end(), *user) != erased.end();
+    });
+    if (s.in_use)
+      std::printf("events spool %s: in use by a running reid, which withdraws these users' events itself\n",
+                  path.c_str());
+    else
+      std::printf("events spool %s: withdrew %zu undelivered events of these users\n", path.c_str(), s.removed);
+    out.push_back({{"path", path}, {"removed", s.removed}, {"in_use", s.in_use}});
+  }
+  return out;
 }
 
 nlohmann::json RunEvents::finish() {

@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -49,6 +51,14 @@ struct RunEvents {
   // withdrawn, spool}, null without --events) and writes a line on stderr when events were dropped or wait undelivered.
   nlohmann::json finish();
 };
+
+// The gallery user an event payload is about (its integer "user"), or nothing.
+std::optional<int64_t> event_user(const std::string& payload);
+
+// Takes the events of `erased` users out of each closed spool file in `spools` (`gallery forget --events-spool`,
+// EventSpool::scrub) and writes a line per spool on stdout. A spool a running `reid` holds is left to it
+// (it withdraws erased users' events itself). Returns {path, removed, in_use} per spool.
+nlohmann::json scrub_spools(const std::vector<std::string>& spools, const std::vector<int64_t>& erased);
 
 // Checks the options (UsageError, InputError for an unreadable credentials or CA file) and starts the
 // publisher of `kind` ("reid" or "groups").

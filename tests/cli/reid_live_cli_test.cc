@@ -125,8 +125,9 @@ std::set<int> spooled_users(const fs::path& spool) {
 TEST(ReidLiveCli, GalleryForgetDuringARunIsKept) {
   TempDir dir;
   const fs::path gallery = dir / "g.db", forget_out = dir / "forget.txt", spool = dir / "events.spool";
-  const std::string script = "(sleep 5; \"$0\" gallery --gallery '" + gallery.string() + "' forget 1 >'" +
-                             forget_out.string() + "' 2>&1; echo \"rc $?\" >>'" + forget_out.string() +
+  const std::string script = "(sleep 5; \"$0\" gallery --gallery '" + gallery.string() + "' forget 1 --events-spool '" +
+                             spool.string() + "' >'" + forget_out.string() + "' 2>&1; echo \"rc $?\" >>'" +
+                             forget_out.string() +
                              "') & \"$0\" \"$@\"; rc=$?; wait; exit $rc";
   const RunResult r = run_bodyrec(
       {"reid", long_walk().string(), "--realtime", "--gallery", gallery.string(), "--json", "-q", "--events",
@@ -135,6 +136,8 @@ TEST(ReidLiveCli, GalleryForgetDuringARunIsKept) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string forgot = read_text(forget_out);
   ASSERT_TRUE(contains(forgot, "rc 0")) << forgot;
+  // The running reid holds the spool: forget leaves it to the run, which withdraws the events itself.
+  EXPECT_TRUE(contains(forgot, "events spool " + spool.string() + ": in use by a running reid")) << forgot;
   const auto j = last_json_line(r.out);
   EXPECT_GE(j["events"]["withdrawn"].get<int>(), 1) << j.dump();
   EXPECT_EQ(j["events"]["delivered"].get<int>(), 0);
@@ -168,6 +171,35 @@ TEST(ReidLiveCli, ASpooledEventOfAForgottenUserIsNeverPublished) {
   const std::set<int> waiting = spooled_users(spool);
   EXPECT_FALSE(waiting.empty());
   EXPECT_EQ(waiting.count(1), 0u);
+}
+
+// `gallery forget --events-spool` takes the user's events out of a spool no run holds, at once: their bytes
+// do not wait on disk for the next run. A spool file that is not there is an input error before anything
+// is erased.
+TEST(ReidLiveCli, GalleryForgetScrubsAClosedSpool) {
+  TempDir dir;
+  const fs::path gallery = dir / "g.db", spool = dir / "events.spool";
+  const RunResult first =
+      run_bodyrec({"reid", short_walk().string(), "--gallery", gallery.string(), "-q", "--events",
+                   "mqtt://127.0.0.1:1/site", "--events-spool", spool.string(), "--events-wait", "0"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::set<int> before = spooled_users(spool);
+  ASSERT_EQ(before.count(1), 1u);
+  expect_one_line_error(
+      run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1", "--events-spool", (dir / "none").string()}),
+      3, (dir / "none").string() + ": no event spool there (--events-spool)");
+  ASSERT_EQ(run_bodyrec({"gallery", "--gallery", gallery.string(), "show", "1"}).exit_code, 0);
+  const RunResult forget = run_bodyrec(
+      {"gallery", "--gallery", gallery.string(), "forget", "1", "--events-spool", spool.string(), "--json"});
+  ASSERT_EQ(forget.exit_code, 0) << forget.err;
+  EXPECT_TRUE(contains(forget.out, "events spool " + spool.string() + ": withdrew ")) << forget.out;
+  const auto j = last_json_line(forget.out);
+  ASSERT_EQ(j["spools"].size(), 1u);
+  EXPECT_GE(j["spools"][0]["removed"].get<int>(), 1);
+  EXPECT_FALSE(j["spools"][0]["in_use"].get<bool>());
+  const std::set<int> after = spooled_users(spool);
+  EXPECT_EQ(after.count(1), 0u);
+  EXPECT_EQ(after.size(), before.size() - 1);
 }
 
 // Plain-camera options given for an RGB-D recording would be ignored: each is a usage error naming it.

@@ -1,6 +1,7 @@
 #include "bodyrec/events/event_spool.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -8,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -31,10 +33,54 @@ void replace_file(const std::string& path, const std::string& text) {
     throw ProcessingError(path + ": cannot write the event spool: " + std::strerror(errno));
 }
 
+// The open descriptor of PATH.lock under an exclusive flock, or -1 when another process holds it.
+int lock_spool(const std::string& path) {
+  const std::string file = path + ".lock";
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
+  if (fd < 0) throw ProcessingError(file + ": cannot create the event spool's lock: " + std::strerror(errno));
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int saved = errno;
+    ::close(fd);
+    if (saved == EWOULDBLOCK) return -1;
+    throw ProcessingError(file + ": cannot lock the event spool: " + std::strerror(saved));
+  }
+  return fd;
+}
+
 }  // namespace
 
 EventSpool::EventSpool(const std::string& path, size_t capacity) : path_(path), capacity_(capacity) {
   if (capacity_ == 0) throw UsageError("event spool capacity must be at least 1");
+  lock_fd_ = lock_spool(path_);
+  if (lock_fd_ < 0)
+    throw SpoolInUse(path_ + ": the event spool is in use by another process (give each run its own --events-spool)");
+  try {
+    load();
+  } catch (...) {
+    ::close(lock_fd_);
+    throw;
+  }
+}
+
+EventSpool::~EventSpool() {
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+SpoolScrub EventSpool::scrub(const std::string& path, const std::function<bool(const SpooledEvent&)>& unwanted) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) throw InputError(path + ": no event spool there");
+  SpoolScrub result;
+  try {
+    // Opening compacts: the delivered lines leave the file whatever is removed.
+    EventSpool spool(path, std::numeric_limits<size_t>::max());
+    result.removed = spool.erase_if(unwanted, false);
+  } catch (const SpoolInUse&) {
+    result.in_use = true;
+  }
+  return result;
+}
+
+void EventSpool::load() {
   {
     std::ifstream sent(path_ + ".sent");
     long long n = 0;

@@ -8,7 +8,8 @@
 // rewrites SPOOL.sent; when everything is delivered both start again empty, and SPOOL is compacted
 // when most of it is delivered. A crash between a delivery and its record delivers that event again
 // (at least once: subscribers drop repeats by event_id). Both files are created mode 0600: events say
-// who was where.
+// who was where. While a spool is open, its process holds an exclusive lock on SPOOL.lock (flock; mode
+// 0600, left in place): two processes never share a spool, and `scrub` knows when a running one holds it.
 #pragma once
 
 #include <cstddef>
@@ -16,10 +17,24 @@
 #include <functional>
 #include <string>
 
+#include "bodyrec/core/error.h"
+
 namespace bodyrec {
 
 struct SpooledEvent {
   std::string topic, payload;
+};
+
+// Thrown when another process holds the spool open.
+class SpoolInUse : public ProcessingError {
+ public:
+  using ProcessingError::ProcessingError;
+};
+
+// What `EventSpool::scrub` did to a spool file.
+struct SpoolScrub {
+  bool in_use = false;  // a running process holds it (and withdraws what it must itself): left untouched
+  size_t removed = 0;   // undelivered events taken out
 };
 
 // Not thread-safe: the publisher guards it with its lock.
@@ -28,9 +43,18 @@ class EventSpool {
   // Opens the spool at `path` (created when missing) and loads what an earlier run left undelivered.
   // `capacity` bounds the undelivered events; when it is full, a new event is dropped and counted
   // (the oldest, already waiting, keep their order). Lines that do not parse (a crash in the middle of a
-  // write) are dropped and counted too. ProcessingError when the files cannot be created or written.
-  // REQUIRES: capacity >= 1.
+  // write) are dropped and counted too. SpoolInUse when another process has it open; ProcessingError
+  // when the files cannot be created or written. REQUIRES: capacity >= 1.
   EventSpool(const std::string& path, size_t capacity);
+  ~EventSpool();
+  EventSpool(const EventSpool&) = delete;
+  EventSpool& operator=(const EventSpool&) = delete;
+
+  // Removes from the spool file at `path`, which no process holds open, every undelivered event for which
+  // `unwanted` is true, and the delivered lines still kept at its head: afterwards none of their bytes
+  // are in the file. A spool a running process holds is left as it is (`in_use`). InputError when there
+  // is no spool at `path`; ProcessingError when it cannot be rewritten.
+  static SpoolScrub scrub(const std::string& path, const std::function<bool(const SpooledEvent&)>& unwanted);
 
   // Queues an event and writes it to the file; false (and dropped() grows) when the spool is full.
   bool push(const SpooledEvent& event);
@@ -51,11 +75,13 @@ class EventSpool {
   const std::string& path() const { return path_; }
 
  private:
+  void load();
   void write_sent(size_t lines);
   void append(const std::string& line);
   void compact();
 
   std::string path_;
+  int lock_fd_ = -1;  // holds the flock on path_ + ".lock"
   size_t capacity_;
   std::deque<SpooledEvent> queue_;
   size_t sent_ = 0;  // delivered lines at the head of the file

@@ -53,16 +53,18 @@ TEST(EventSpool, KeepsOrderAcrossRunsAndForgetsWhatWasDelivered) {
 TEST(EventSpool, EraseIfRemovesEventsFromTheQueueAndTheFile) {
   TempDir dir;
   const std::string path = (dir / "events.spool").string();
-  EventSpool s(path, 100);
-  for (int i = 0; i < 6; ++i) s.push(ev(i));
-  drain(s, 1);  // n 0 delivered
-  const auto even = [](const SpooledEvent& e) { return (e.payload[5] - '0') % 2 == 0; };
-  EXPECT_EQ(s.erase_if(even, /*keep_front=*/false), 2u);  // n 2 and 4
-  EXPECT_EQ(s.size(), 3u);
-  EXPECT_EQ(read_text(path).find("\\\"n\\\":2"), std::string::npos) << read_text(path);
-  EXPECT_NE(read_text(path).find("\\\"n\\\":3"), std::string::npos) << read_text(path);
-  EXPECT_EQ(s.erase_if([](const SpooledEvent&) { return true; }, /*keep_front=*/true), 2u);  // n 3 and 5
-  EXPECT_EQ(drain(s, 10), std::vector<std::string>({"{\"n\":1}"}));
+  {
+    EventSpool s(path, 100);
+    for (int i = 0; i < 6; ++i) s.push(ev(i));
+    drain(s, 1);  // n 0 delivered
+    const auto even = [](const SpooledEvent& e) { return (e.payload[5] - '0') % 2 == 0; };
+    EXPECT_EQ(s.erase_if(even, /*keep_front=*/false), 2u);  // n 2 and 4
+    EXPECT_EQ(s.size(), 3u);
+    EXPECT_EQ(read_text(path).find("\\\"n\\\":2"), std::string::npos) << read_text(path);
+    EXPECT_NE(read_text(path).find("\\\"n\\\":3"), std::string::npos) << read_text(path);
+    EXPECT_EQ(s.erase_if([](const SpooledEvent&) { return true; }, /*keep_front=*/true), 2u);  // n 3 and 5
+    EXPECT_EQ(drain(s, 10), std::vector<std::string>({"{\"n\":1}"}));
+  }
   EventSpool again(path, 100);
   EXPECT_EQ(again.recovered(), 0u);
 }
@@ -92,16 +94,59 @@ TEST(EventSpool, ABrokenOrTruncatedLineIsDroppedAndCounted) {
 TEST(EventSpool, ManyDeliveriesCompactTheFile) {
   TempDir dir;
   const std::string path = (dir / "s").string();
-  EventSpool s(path, 5000);
-  for (int i = 0; i < 3000; ++i) s.push(ev(i));
-  drain(s, 2000);
-  // Compacted at the 1501st delivery (more delivered than waiting): the file then held the 1499 waiting
-  // lines, of which 499 more were delivered since.
-  EXPECT_EQ(bodyrec::testing::lines_of(read_text(path)).size(), 1499u);
-  EXPECT_EQ(read_text(path + ".sent"), "499\n");
+  {
+    EventSpool s(path, 5000);
+    for (int i = 0; i < 3000; ++i) s.push(ev(i));
+    drain(s, 2000);
+    // Compacted at the 1501st delivery (more delivered than waiting): the file then held the 1499 waiting
+    // lines, of which 499 more were delivered since.
+    EXPECT_EQ(bodyrec::testing::lines_of(read_text(path)).size(), 1499u);
+    EXPECT_EQ(read_text(path + ".sent"), "499\n");
+  }
   EventSpool again(path, 5000);
   EXPECT_EQ(again.recovered(), 1000u);
   EXPECT_EQ(again.front().payload, "{\"n\":2000}");
+}
+
+// One process at a time: a second opening fails while the first holds the spool, and works after it.
+TEST(EventSpool, ASpoolInUseCannotBeOpenedAgain) {
+  TempDir dir;
+  const std::string path = (dir / "s").string();
+  {
+    EventSpool s(path, 10);
+    s.push(ev(1));
+    EXPECT_THROW(EventSpool(path, 10), SpoolInUse);
+  }
+  EventSpool again(path, 10);
+  EXPECT_EQ(again.recovered(), 1u);
+}
+
+// What `gallery forget --events-spool` does: the unwanted events and the delivered lines leave the file;
+// a spool held by a running process is left to it.
+TEST(EventSpool, ScrubRemovesUnwantedAndDeliveredLinesFromAClosedSpool) {
+  TempDir dir;
+  const std::string path = (dir / "s").string();
+  const auto two_or_four = [](const SpooledEvent& e) { return e.payload == "{\"n\":2}" || e.payload == "{\"n\":4}"; };
+  {
+    EventSpool s(path, 100);
+    for (int i = 0; i < 6; ++i) s.push(ev(i));
+    drain(s, 1);  // n 0 delivered: its line stays in the file until compaction
+    EXPECT_NE(read_text(path).find("\\\"n\\\":0"), std::string::npos);
+    const SpoolScrub busy = EventSpool::scrub(path, two_or_four);
+    EXPECT_TRUE(busy.in_use);
+    EXPECT_EQ(busy.removed, 0u);
+    EXPECT_EQ(bodyrec::testing::lines_of(read_text(path)).size(), 6u);
+  }
+  const SpoolScrub done = EventSpool::scrub(path, two_or_four);
+  EXPECT_FALSE(done.in_use);
+  EXPECT_EQ(done.removed, 2u);
+  const std::string text = read_text(path);
+  EXPECT_EQ(bodyrec::testing::lines_of(text).size(), 3u) << text;
+  for (const char* gone : {"\\\"n\\\":0", "\\\"n\\\":2", "\\\"n\\\":4"})
+    EXPECT_EQ(text.find(gone), std::string::npos) << text;
+  EventSpool again(path, 100);
+  EXPECT_EQ(drain(again, 10), std::vector<std::string>({"{\"n\":1}", "{\"n\":3}", "{\"n\":5}"}));
+  EXPECT_THROW(EventSpool::scrub((dir / "none").string(), two_or_four), InputError);
 }
 
 TEST(EventSpool, AnUnwritableSpoolIsAProcessingError) {
