@@ -6,6 +6,7 @@
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/frame_source.h"
+#include "bodyrec/rgbd/recording.h"
 #include "bodyrec/report/gallery_users.h"
 #include "bodyrec/report/report.h"
 #include "command.h"
@@ -20,13 +21,33 @@ struct ReportCommand {
   int key_frames = 5;
   bool no_images = false;
 
-  // Decodes the chosen frames of the source and draws the run's boxes on them.
+  // Decodes the chosen frames of the source (a video, images or a camera's frames as `detect` reads them, or
+  // a recording's colour frames) and draws the run's boxes on them.
   std::vector<report::KeyFrame> decode_key_frames(const report::RunData& run) const {
     std::vector<report::KeyFrame> frames;
     const auto chosen = report::choose_key_frames(run, key_frames);
     if (chosen.empty()) return frames;
-    std::map<int, const report::GroupsFrameRow*> rows;
-    for (const auto& r : run.groups) rows[r.frame] = &r;
+    const auto add = [&](int index, const cv::Mat& image) {
+      report::KeyFrame k;
+      k.frame = index;
+      k.image = image.clone();
+      k.caption = report::annotate_key_frame(k.image, run, index);
+      frames.push_back(std::move(k));
+    };
+    const auto ends_before = [&](int index) {
+      return InputError(source + ": ends before frame " + std::to_string(index) + " of " + run_path +
+                        " (is it the run's input?)");
+    };
+    std::error_code ec;
+    if (std::filesystem::exists(std::filesystem::path(source) / "meta.json", ec)) {
+      const RecordingReader recording(source);
+      if (!recording.meta().streams.color) throw InputError(source + ": the recording has no colour frames to show");
+      for (int index : chosen) {
+        if (index >= recording.frame_count()) throw ends_before(index);
+        add(index, recording.read_frame(index).color);
+      }
+      return frames;
+    }
     SourceOptions options;
     options.path = source;
     auto video = open_source(options);
@@ -34,22 +55,10 @@ struct ReportCommand {
     size_t next = 0;
     while (next < chosen.size() && video->read(frame)) {
       if (frame.index != chosen[next]) continue;
-      const auto& row = *rows.at(frame.index);
-      report::KeyFrame k;
-      k.frame = frame.index;
-      k.time = row.time;
-      k.image = frame.image.clone();
-      report::annotate_groups_frame(k.image, row);
-      int leaders = 0;
-      for (const auto& l : row.leaders) leaders += l.state == "tracking";
-      k.caption = "frame " + std::to_string(frame.index) + " · " + std::to_string(row.people.size()) + " people · " +
-                  std::to_string(leaders) + (leaders == 1 ? " leader" : " leaders");
-      frames.push_back(std::move(k));
+      add(frame.index, frame.image);
       ++next;
     }
-    if (next < chosen.size())
-      throw InputError(source + ": ends before frame " + std::to_string(chosen[next]) + " of " + run_path +
-                       " (is it the run's video?)");
+    if (next < chosen.size()) throw ends_before(chosen[next]);
     return frames;
   }
 
@@ -68,8 +77,7 @@ struct ReportCommand {
     char stamp[32];
     std::strftime(stamp, sizeof stamp, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
     input.generated = stamp;
-    if (!source.empty() && input.images && input.run.kind == report::RunKind::kGroups)
-      input.key_frames = decode_key_frames(input.run);
+    if (!source.empty() && input.images) input.key_frames = decode_key_frames(input.run);
     const std::string page = report::render_report(input);
     std::ofstream file(out, std::ios::binary);
     if (!file) throw ProcessingError(out + ": cannot write the report");
@@ -100,7 +108,9 @@ void add(CLI::App& app) {
       "         bodyrec report run.jsonl --eval viper.json --eval hotel.json --out report.html\n"
       "         bodyrec report reid.jsonl --gallery gallery.db --out report.html");
   sub->add_option("run", command->run_path, "Run JSON lines (bodyrec groups --jsonl, bodyrec reid)")->required();
-  sub->add_option("--source", command->source, "The run's video: key frames are decoded and annotated from it");
+  sub->add_option("--source", command->source,
+                  "The run's input (a video, an image folder or glob, or an RGB-D recording): key frames are "
+                  "decoded from it and annotated");
   sub->add_option("--eval", command->evals,
                   "File holding the --json output of an eval command (kind from its keys); repeatable. Per-person "
                   "landmark errors (eval landmarks --per-person) give a histogram");

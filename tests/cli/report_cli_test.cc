@@ -12,6 +12,8 @@
 namespace bodyrec::testing {
 namespace {
 
+namespace fs = std::filesystem;
+
 int count(const std::string& text, const std::string& part) {
   int n = 0;
   for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + part.size())) ++n;
@@ -99,6 +101,34 @@ TEST(ReportCommand, GalleryUsersAreRowsOfEightViews) {
                                         "--out", (dir / "groups.html").string()});
   ASSERT_EQ(groups.exit_code, 0) << groups.err;
   EXPECT_EQ(count(read_text(dir / "groups.html"), "class=\"uevent\""), 3);  // every gallery event
+}
+
+// A re-identification run's key frames come from its input, here a recording's colour frames: each body
+// boxed in its user's colour, captions naming who was recognised or enrolled there.
+TEST(ReportCommand, ReidRunKeyFramesComeFromItsRecording) {
+  TempDir dir;
+  const fs::path& rec = synth_recording({"--people", "3", "--seed", "21", "--frames", "60", "--scenario", "reenter"});
+  const RunResult run = run_bodyrec(
+      {"reid", rec.string(), "--gallery", (dir / "g.db").string(), "--jsonl", (dir / "r.jsonl").string(), "-q"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const RunResult r = run_bodyrec({"report", (dir / "r.jsonl").string(), "--source", rec.string(), "--key-frames", "3",
+                                   "--out", (dir / "page.html").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "re-identification run, 60 frames, 0 evaluations, 3 key frames")) << r.out;
+  const std::string page = read_text(dir / "page.html");
+  EXPECT_EQ(count(page, "<img alt=\"frame "), 3);
+  EXPECT_GE(count(page, " enrolled</figcaption>") + count(page, " recognised</figcaption>"), 1);
+  EXPECT_TRUE(contains(page, "Each body's box in its user's colour")) << page.substr(0, 2000);
+  // Without --source the section says which frames it would show.
+  const RunResult bare = run_bodyrec({"report", (dir / "r.jsonl").string(), "--out", (dir / "bare.html").string()});
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_TRUE(contains(read_text(dir / "bare.html"), "Give --source with the run's input"));
+  // A source shorter than the run is not its input: one line, exit 3, no page.
+  const fs::path& short_rec = synth_recording({"--people", "1", "--seed", "3", "--frames", "6"});
+  const RunResult wrong = run_bodyrec({"report", (dir / "r.jsonl").string(), "--source", short_rec.string(),
+                                       "--out", (dir / "wrong.html").string()});
+  expect_one_line_error(wrong, 3, short_rec.string() + ": ends before frame ");
+  EXPECT_FALSE(fs::exists(dir / "wrong.html"));
 }
 
 TEST(ReportCommand, BadInputsGiveOneLineErrors) {

@@ -120,54 +120,13 @@ Section direction_rose(const RunData& run) {
   return s;
 }
 
-Section key_frames(const ReportInput& input) {
-  Section s{"key-frames", "Key frames", ""};
-  const auto chosen = choose_key_frames(input.run);
-  std::string list;
-  for (int f : chosen) list += (list.empty() ? "" : ", ") + std::to_string(f);
-  if (!input.images) {
-    s.html = "<p class=\"note\">Images left out (--no-images). Frames chosen: " + list + ".</p>";
-  } else if (input.key_frames.empty()) {
-    s.html = "<p class=\"note\">Give --source VIDEO to see these frames annotated: " + list + ".</p>";
-  } else {
-    s.html = "<p>Frames with leaders and the most people, spread over the run. Boxes in role colours, the "
-             "leader's walking direction as a yellow arrow.</p><div class=\"frames\">";
-    for (const auto& k : input.key_frames)
-      s.html += "<figure><img alt=\"frame " + std::to_string(k.frame) + "\" src=\"" + jpeg_data_uri(k.image) +
-                "\"><figcaption>" + html_escape(k.caption) + "</figcaption></figure>";
-    s.html += "</div>";
-  }
-  return s;
-}
-
 }  // namespace
 
 void add_groups_sections(const ReportInput& input, std::vector<Section>& out) {
   out.push_back(role_timeline(input.run));
   out.push_back(group_counts(input.run));
   out.push_back(direction_rose(input.run));
-  out.push_back(key_frames(input));
-}
-
-std::vector<int> choose_key_frames(const RunData& run, int count) {
-  if (run.kind != RunKind::kGroups || run.groups.empty() || count <= 0) return {};
-  std::vector<std::pair<double, int>> scored;  // (score, frame)
-  for (const auto& row : run.groups) {
-    int tracking = 0;
-    for (const auto& l : row.leaders) tracking += l.state == "tracking";
-    scored.emplace_back(tracking * 10.0 + static_cast<double>(row.people.size()), row.frame);
-  }
-  std::stable_sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-  const int span = run.groups.back().frame - run.groups.front().frame + 1;
-  const int gap = std::max(1, span / (2 * count));
-  std::vector<int> chosen;
-  for (const auto& [score, frame] : scored) {
-    if (static_cast<int>(chosen.size()) == count) break;
-    const bool far = std::all_of(chosen.begin(), chosen.end(), [&](int c) { return std::abs(c - frame) >= gap; });
-    if (far) chosen.push_back(frame);
-  }
-  std::sort(chosen.begin(), chosen.end());
-  return chosen;
+  out.push_back(key_frames_section(input));
 }
 
 }  // namespace bodyrec::report

@@ -253,6 +253,7 @@ void add_reid_sections(const ReportInput& input, std::vector<Section>& out) {
   if (auto live = live_section(input.run)) out.push_back(std::move(*live));
   out.push_back(events_section(input.run));
   out.push_back(identities_section(input.run));
+  out.push_back(key_frames_section(input));
 }
 
 }  // namespace bodyrec::report

@@ -4,10 +4,6 @@
 #include <cmath>
 #include <set>
 
-#include <opencv2/imgproc.hpp>
-
-#include "bodyrec/core/role.h"
-#include "bodyrec/io/annotate.h"
 #include "bodyrec/report/html.h"
 #include "bodyrec/report/sections.h"
 
@@ -149,29 +145,6 @@ std::string render_report(const ReportInput& input) {
   page += "<footer>bodyrec " BODYREC_VERSION " · self-contained page: no scripts, nothing loaded from the network"
           "</footer></main></body></html>\n";
   return page;
-}
-
-void annotate_groups_frame(cv::Mat& image, const GroupsFrameRow& row) {
-  auto bgr = [](const std::string& role) { return role_color(parse_role(role).value_or(Role::kUnknown)); };
-  for (const auto& p : row.people) {
-    std::string label = std::to_string(p.id);
-    if (p.group >= 0) label += " g" + std::to_string(p.group);
-    draw_labelled_box(image, p.box, bgr(p.role), label, p.state == "lost" ? 1 : 2);
-  }
-  for (const auto& l : row.leaders) {
-    if (!l.box) continue;
-    cv::rectangle(image, cv::Rect(*l.box), colors::kBlue, 3, cv::LINE_AA);
-    if (!l.degrees || l.magnitude <= 0.05) continue;
-    // 10 frames of travel, at least 25 px, so that walking is visible (as in the annotated video).
-    const double length = std::max(25.0, l.magnitude * 10.0), a = *l.degrees * CV_PI / 180.0;
-    const cv::Point2d from(l.box->x + l.box->width / 2, l.box->y + l.box->height / 3);
-    cv::arrowedLine(image, from, from + cv::Point2d(std::cos(a), -std::sin(a)) * length, colors::kYellow, 2,
-                    cv::LINE_AA, 0, 0.25);
-  }
-  int tracking = 0;
-  for (const auto& l : row.leaders) tracking += l.state == "tracking";
-  draw_caption(image, "frame " + std::to_string(row.frame) + "  people " + std::to_string(row.people.size()) +
-                          "  leaders " + std::to_string(tracking));
 }
 
 }  // namespace bodyrec::report

@@ -13,7 +13,7 @@ namespace bodyrec::report {
 
 struct ReportInput {
   RunData run;
-  std::string source;                // the video the run came from ("" = unknown)
+  std::string source;                // the run's input: video, images or recording ("" = unknown)
   std::string generated;             // date/time text for the header
   std::vector<EvalResult> evals;
   bool have_gallery = false;         // users below come from a gallery (even when it is empty)
@@ -27,19 +27,28 @@ struct Section {
 };
 
 // The sections the inputs support, in page order (ids: header, roles, groups, directions, key-frames,
-// users, events, identities, speed, evaluations).
+// users, live, events, identities, key-frames, speed, evaluations; key-frames after the run's own).
 std::vector<Section> build_sections(const ReportInput& input);
 
 // The whole page.
 std::string render_report(const ReportInput& input);
 
-// Frames worth showing from a groups run: up to `count`, favouring frames with leaders tracked and many
-// people, spread over the run (at least run length / (2 count) frames apart), in frame order.
+// Frames worth showing from a run: up to `count`, spread over the run (at least run length / (2 count)
+// frames apart), in frame order. A groups run favours frames with leaders tracked and many people; a
+// re-identification run frames with identification events (recognised, enrolled) and many bodies.
 std::vector<int> choose_key_frames(const RunData& run, int count = 5);
 
 // Draws a groups row on `image` (BGR): boxes in role colours with ids, the leader's walking direction as
 // an arrow, a caption.
 void annotate_groups_frame(cv::Mat& image, const GroupsFrameRow& row);
+
+// Draws a re-identification row on `image` (BGR): each body's box in its user's colour, labelled with the
+// user and view ("user 3 F"; a grey "track 7" while undecided), and a caption.
+void annotate_reid_frame(cv::Mat& image, const ReidFrameRow& row);
+
+// Draws the row of `frame` of `run` (either kind) on `image` and returns the key frame's caption.
+// REQUIRES: `run` has a row for `frame` (one that choose_key_frames chose).
+std::string annotate_key_frame(cv::Mat& image, const RunData& run, int frame);
 
 // CSS colours of the roles (the thesis's: leader blue, member green, non-member red, potential amber).
 std::string role_colour(const std::string& role);

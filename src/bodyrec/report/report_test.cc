@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/annotate.h"
 #include "bodyrec/report/sections.h"
 #include "test_support.h"
 
@@ -99,11 +100,12 @@ TEST(ReportSections, GroupsRunGetsGroupSectionsOnly) {
 TEST(ReportSections, ReidRunGetsUsersEventsIdentities) {
   ReportInput input;
   input.run = reid_run();
-  EXPECT_EQ(ids(build_sections(input)), (std::vector<std::string>{"header", "events", "identities", "speed"}));
+  EXPECT_EQ(ids(build_sections(input)),
+            (std::vector<std::string>{"header", "events", "identities", "key-frames", "speed"}));
   input.have_gallery = true;
   input.evals.push_back(eval_of(R"({"accuracy":0.9,"splits":0,"merges":1,"frames":30,"ms_per_frame":3})"));
   EXPECT_EQ(ids(build_sections(input)),
-            (std::vector<std::string>{"header", "users", "events", "identities", "speed", "evaluations"}));
+            (std::vector<std::string>{"header", "users", "events", "identities", "key-frames", "speed", "evaluations"}));
 }
 
 // A live run's rows carry arrival, wall and dropped: the report says how many frames were dropped and
@@ -118,7 +120,7 @@ TEST(ReportSections, LiveReidRunShowsDroppedFramesAndLatency) {
     row.ms = {{"detect", 5.0}, {"reid", 2.0}};
   }
   const auto sections = build_sections(input);
-  EXPECT_EQ(ids(sections), (std::vector<std::string>{"header", "live", "events", "identities", "speed"}));
+  EXPECT_EQ(ids(sections), (std::vector<std::string>{"header", "live", "events", "identities", "key-frames", "speed"}));
   const std::string& html = sections[1].html;
   EXPECT_NE(html.find("30 frames processed, <b>2</b> dropped"), std::string::npos) << html;
   // Events at frames 5, 15, 20: 45, 55, 60 ms; all frames: 27 at 10 ms and those three.
@@ -251,6 +253,38 @@ TEST(ReportKeyFrames, ChoosesLeaderFramesSpreadOverTheRun) {
   EXPECT_LT(chosen[1], 60);
   for (size_t i = 1; i < chosen.size(); ++i) EXPECT_GE(chosen[i] - chosen[i - 1], 10);
   for (int f : chosen) EXPECT_GE(f, 30);
+}
+
+// A re-identification run: the recognition (frame 15) first, then the enrolment (frame 5), 10 frames apart.
+TEST(ReportKeyFrames, ReidRunsFavourRecognitionsAndEnrolments) {
+  EXPECT_EQ(choose_key_frames(reid_run(), 2), (std::vector<int>{5, 15}));
+  RunData run = reid_run();
+  ReidFrameRow end;
+  end.frame = 30;
+  end.end = true;
+  end.events.push_back({"left", 1, 7, "F", std::nullopt});
+  run.reid.push_back(end);
+  for (int f : choose_key_frames(run, 30)) EXPECT_LT(f, 30);  // the closing row is not a frame
+}
+
+TEST(ReportKeyFrames, ReidAnnotationColoursBodiesByUser) {
+  ReidFrameRow row;
+  row.frame = 15;
+  row.bodies.push_back({7, 1, "F", Box(50, 100, 40, 80)});
+  row.bodies.push_back({8, std::nullopt, "", Box(150, 100, 40, 80)});
+  row.events.push_back({"recognised", 1, 7, "F", 23.0});
+  RunData run;
+  run.kind = RunKind::kReid;
+  run.reid.push_back(row);
+  cv::Mat image(240, 320, CV_8UC3, cv::Scalar::all(0));
+  EXPECT_EQ(annotate_key_frame(image, run, 15), "frame 15 · 2 bodies · user 1 recognised");
+  const cv::Scalar user = id_color(1);
+  EXPECT_EQ(image.at<cv::Vec3b>(160, 50), cv::Vec3b(static_cast<uchar>(user[0]), static_cast<uchar>(user[1]),
+                                                     static_cast<uchar>(user[2])));  // user 1's left edge
+  const cv::Vec3b undecided = image.at<cv::Vec3b>(160, 150);  // a thin grey line
+  EXPECT_EQ(undecided[0], undecided[1]);
+  EXPECT_EQ(undecided[1], undecided[2]);
+  EXPECT_GT(undecided[0], 100);
 }
 
 TEST(ReportKeyFrames, AnnotationDrawsRoleColoursAndTheArrow) {

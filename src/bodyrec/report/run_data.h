@@ -131,7 +131,6 @@ struct ReportUser {
 // A decoded (and annotated) frame of the source to show.
 struct KeyFrame {
   int frame = 0;
-  double time = 0;
   cv::Mat image;
   std::string caption;
 };
