@@ -38,7 +38,7 @@ void add(CLI::App& app) {
       "Photos (people of any size, no motion): bodyrec detect photos/ --preset photo --annotate out/photos/");
   add_source_options(*sub, command->source);
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kDetect);
   sub->callback([command] { command->run(); });
 }
 

@@ -140,7 +140,7 @@ void add(CLI::App& eval) {
                 "End stdout with one JSON object (ap50, precision, recall, frames, ms_per_frame; ap50_low and "
                 "ap50_high with --bootstrap)");
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kDetect);
   sub->callback([command] { command->run(); });
 }
 

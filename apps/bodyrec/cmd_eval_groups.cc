@@ -195,7 +195,7 @@ void add(CLI::App& eval) {
   sub->add_flag("--nested", command->nested,
                 "Nested leave-one-scene-out over the 3+ scenes: every method family (rules, pair models; "
                 "linkage none, single, chosen) with its settings chosen within the other scenes only");
-  add_group_options(*sub, command->options);
+  add_group_options(*sub, command->options, GroupInput::kSceneFiles);
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (pair_precision, pair_recall, pair_f1, pairs, ...)");
   sub->callback([command] { command->run(); });

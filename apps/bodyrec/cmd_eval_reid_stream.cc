@@ -16,6 +16,7 @@
 #include "bodyrec/reid/memory_reid_store.h"
 #include "bodyrec/reid/visit_separability.h"
 #include "command.h"
+#include "option_checks.h"
 #include "enum_option.h"
 #include "reid_output.h"
 
@@ -186,7 +187,7 @@ void add(CLI::App& app) {
                   "gt.txt; each tracked box is scored as the person whose box it overlaps most (IoU >= --gt-iou, one "
                   "to one). The file's ids are the people: one who comes back under a new id counts as another person");
   sub->add_option("--gt-iou", command->gt_iou, "Least IoU between a body's box and its person's box with --gt")
-      ->check(CLI::Range(0.05, 1.0))
+      ->check(in_range(0.05, 1.0))
       ->capture_default_str();
   sub->add_option("--gallery", command->gallery,
                   "Start from (and write to) this gallery instead of a fresh one in memory");

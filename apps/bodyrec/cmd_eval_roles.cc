@@ -89,7 +89,7 @@ void add(CLI::App& eval) {
       ->check(in_range(0.05, 1.0))->capture_default_str();
   sub->add_flag("--json", command->json, "End stdout with one JSON object (accuracy, boxes, matched, ...)");
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kTrack);
   add_groups_options(*sub, command->groups);
   sub->callback([command] { command->run(); });
 }

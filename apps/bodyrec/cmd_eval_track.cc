@@ -87,7 +87,7 @@ void add(CLI::App& eval) {
   sub->add_flag("--json", command->json,
                 "End stdout with one JSON object (mota, motp, idf1, id_switches, fp, fn, frames, ms_per_frame)");
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kTrack);
   add_tracker_options(*sub, command->tracking);
   sub->callback([command] { command->run(); });
 }

@@ -28,6 +28,9 @@ struct GroupsCommand {
   void run() const {
     groups.tracking.tracker.check();
     groups.resolved();
+    // groups keeps no gallery: its sensor id goes only into MQTT events.
+    if (!event_options.sensor.empty() && event_options.uri.empty())
+      throw UsageError("--sensor-id names the sensor in MQTT events: it needs --events");
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame: outputs whole, summary written, exit 0
     auto frames = open_source(source);
     auto people = make_detector(detector, *frames);
@@ -86,7 +89,7 @@ struct GroupsCommand {
           {"leader_lost", lost_events},
           {"leader_reacquired", reacquired},
           {"leader_handovers", handovers},
-          {"sensor", events.sensor},
+          {"sensor", events.publisher ? nlohmann::json(events.sensor) : nlohmann::json(nullptr)},
           {"events", delivery}};
       std::printf("%s\n", json_text(summary).c_str());
     }
@@ -109,7 +112,7 @@ void add(CLI::App& app) {
       "--annotate out/groups.avi");
   add_source_options(*sub, command->source);
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kTrack);
   add_groups_options(*sub, command->groups);
   add_sensor_option(*sub, command->event_options);
   add_event_options(*sub, command->event_options);

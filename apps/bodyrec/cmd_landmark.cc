@@ -37,11 +37,14 @@ struct LandmarkCommand {
   ShapeFittingOptions fitting;
   TrackingJobOptions tracking;
   std::string shape, detector_choice = "hog";
+  CLI::Option* detector_option = nullptr;
   bool track = false;
 
   void run() {
     if (!outputs.mot.empty() && !track) throw UsageError("landmark writes MOT output only with --track (ids)");
     if (track) tracking.check();  // before the model loads and the source opens
+    if (detector_choice == "hog" && detector_option->count() > 0 && !detector.model_file.empty())
+      throw UsageError("--detector hog and --model " + detector.model_file + " name two detectors: give one");
     if (detector_choice != "hog") {
       if (!detector.model_file.empty() && detector.model_file != detector_choice)
         throw UsageError("give the fHOG model with either --detector or --model, not both");
@@ -152,13 +155,17 @@ void add(CLI::App& app) {
   add_source_options(*sub, command->source);
   add_shape_model_option(*sub, command->shape);
   add_shape_fitting_options(*sub, command->fitting);
-  sub->add_option("--detector", command->detector_choice,
-                  "People detector: 'hog' (OpenCV HOG, options below) or a dlib fHOG FILE.svm")
-      ->capture_default_str();
+  command->detector_option =
+      sub->add_option("--detector", command->detector_choice,
+                      "People detector: 'hog' (OpenCV HOG, options below) or a dlib fHOG FILE.svm")
+          ->capture_default_str();
   CLI::Option* track = sub->add_flag(
       "--track", command->track, "Track people across frames: ids, filtered boxes, the detector every --detect-every frames");
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kTrack);
+  // The search around tracks runs only with --track.
+  for (CLI::Option* option : {command->detector.o_local_margin, command->detector.o_local_height_margin})
+    option->needs(track);
   for (CLI::Option* option : add_tracker_options(*sub, command->tracking)) option->needs(track);
   sub->callback([command] { command->run(); });
 }

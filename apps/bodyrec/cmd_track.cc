@@ -40,7 +40,7 @@ void add(CLI::App& app) {
       "--mot out/track.txt --annotate out/track.avi");
   add_source_options(*sub, command->source);
   add_output_options(*sub, command->outputs);
-  add_detector_options(*sub, command->detector);
+  add_detector_options(*sub, command->detector, DetectorUse::kTrack);
   add_tracker_options(*sub, command->tracking);
   sub->callback([command] { command->run(); });
 }

@@ -97,7 +97,7 @@ void add(CLI::App& app) {
                   "pair-model: all features or only median distance and speed difference", "all");
   sub->add_option("--l2", command->l2, "pair-model: L2 penalties to choose from (on the standardised weights)")
       ->check(non_negative());
-  add_group_options(*sub, command->options);
+  add_group_options(*sub, command->options, GroupInput::kSceneFiles);
   sub->callback([command] { command->run(); });
 }
 

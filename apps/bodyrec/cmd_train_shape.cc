@@ -26,9 +26,15 @@ struct TrainShapeCommand {
   int holdout_every = 0;
   std::string net_size = "24x72", seed, holdout_xml;
   bool json = false;
+  std::vector<const CLI::Option*> net_only, trees_only;  // options one method reads and the other would ignore
 
   void run() {
     if (holdout_every == 1) throw UsageError("--holdout-every must be 0 (off) or >= 2");
+    const bool net = options.method == ShapeMethod::kMaskNet;
+    for (const CLI::Option* option : net ? trees_only : net_only)
+      if (option->count() > 0)
+        throw UsageError(option->get_name() + " is a " + (net ? "trees" : "mask-net") + " option; --method " +
+                         (net ? "mask-net" : "trees") + " takes none");
     parse_net_options();
     options.check();
     require_output_folder(out);  // fail before a long training run, not after
@@ -148,6 +154,12 @@ void add(CLI::App& app) {
   sub->add_option("--lambda", o.lambda, "trees: prior favouring nearby pixel pairs in split tests")->capture_default_str();
   sub->add_option("--padding", o.padding, "trees: grow the feature pool region by this fraction")->capture_default_str();
   sub->add_option("--threads", o.threads, "trees: training threads")->capture_default_str();
+  for (const char* name : {"--net-size", "--iterations", "--batch", "--learning-rate", "--weight-decay",
+                           "--mask-threshold", "--box-jitter", "--networks"})
+    command->net_only.push_back(sub->get_option(name));
+  for (const char* name : {"--oversampling", "--nu", "--tree-depth", "--cascade-depth", "--trees-per-level",
+                           "--feature-pool-size", "--test-splits", "--lambda", "--padding", "--threads"})
+    command->trees_only.push_back(sub->get_option(name));
   sub->add_option("--seed", command->seed,
                   "Random seed (trees: any text, default dlib's fixed seed; mask-net: a whole number, default 0)");
   sub->add_option("--holdout-every", command->holdout_every,

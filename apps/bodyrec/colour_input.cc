@@ -23,7 +23,7 @@ void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
                   "People: foreground (background subtraction, for a static camera) or hog (the HOG detector "
                   "with --preset and the HOG options; a dlib fHOG model with --detector-model)",
                   "foreground");
-  add_detector_options(sub, o.detector, "--detector-model");
+  add_detector_options(sub, o.detector, DetectorUse::kTrack, "--detector-model");
   add_tracker_options(sub, o.tracking);
   add_enum_option(sub, "--body-mask", o.mask,
                   std::vector<std::pair<std::string, MaskFrom>>{{"foreground", MaskFrom::kForeground},
@@ -44,7 +44,7 @@ void add_colour_options(CLI::App& sub, ColourCliOptions& o, bool camera) {
   sub.add_option("--fps", o.image_fps,
                  "Frame rate of an image sequence, whose files carry no times: image N is at N / fps seconds "
                  "(walking directions and leaving are measured in time); videos and cameras have their own")
-      ->check(CLI::Range(0.1, 1000.0))
+      ->check(in_range(0.1, 1000.0))
       ->capture_default_str();
   const std::vector<CLI::Option*> all = sub.get_options();
   for (std::size_t i = before; i < all.size(); ++i) {

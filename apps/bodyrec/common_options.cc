@@ -30,7 +30,7 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
   sub.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
 }
 
-void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& model_flag) {
+void add_detector_options(CLI::App& sub, DetectorOptions& o, DetectorUse use, const std::string& model_flag) {
   add_enum_option(sub, "--preset", o.preset,
                   std::vector<std::pair<std::string, DetectorPreset>>{{"auto", DetectorPreset::kAuto},
                                                                       {"default", DetectorPreset::kDefault},
@@ -69,7 +69,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
   for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels, o.o_adapt,
                            o.o_motion_margin})
     opt->default_str("preset");
-  sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
+  sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4)->default_str("");
   add_enum_option(sub, "--motion", o.motion,
                   std::vector<std::pair<std::string, MotionChoice>>{
                       {"on", MotionChoice::kOn}, {"off", MotionChoice::kOff}, {"preset", MotionChoice::kPreset}},
@@ -77,6 +77,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, const std::string& 
   o.o_nms = sub.add_option("--nms-iou", o.nms_iou,
                            "Non-maximum suppression IoU threshold (HOG, photo and fHOG detectors)")
                 ->capture_default_str();
+  if (use == DetectorUse::kDetect) return;
   o.o_local_margin = sub.add_option("--local-margin", o.local_region_margin,
                                     "HOG search around a track (frames between full detections): the window grows "
                                     "by this fraction of its size on every side")

@@ -58,8 +58,13 @@ struct DetectorOptions {
               *o_local_height_margin = nullptr;
 };
 
+// What a command does with its detector: a tracking command also searches around its tracks between full
+// detections (--local-margin, --local-height-margin); a detecting one does not, so has no such options.
+enum class DetectorUse { kDetect, kTrack };
+
 // `model_flag` names the fHOG model option (`--model`; a command whose --model is something else renames it).
-void add_detector_options(CLI::App& sub, DetectorOptions& options, const std::string& model_flag = "--model");
+void add_detector_options(CLI::App& sub, DetectorOptions& options, DetectorUse use,
+                          const std::string& model_flag = "--model");
 
 // Builds the detector; throws UsageError for inconsistent options, InputError for a bad model file.
 // `consecutive_frames` says the frames come from one video or camera: motion regions (when the preset

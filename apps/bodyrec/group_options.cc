@@ -21,7 +21,7 @@ GroupOptions GroupCliOptions::resolved() const {
   return resolved(std::make_shared<const PairModel>(builtin_pair_model_for("")));
 }
 
-void add_group_options(CLI::App& sub, GroupCliOptions& options) {
+void add_group_options(CLI::App& sub, GroupCliOptions& options, GroupInput input) {
   options.window_option =
       sub.add_option("--window", options.groups.window_s, "Pair features over the last N seconds, or inf: over the pair's whole common time (default: the "
                      "model's; train-groups chooses it)")
@@ -51,9 +51,10 @@ void add_group_options(CLI::App& sub, GroupCliOptions& options) {
       "How pairs form groups: single (connected components of together pairs), average (clusters whose pairs "
       "agree on average), none (each pair alone); train-groups chooses it",
       "the model's");
-  sub.add_option("--seconds-per-frame", options.seconds_per_frame,
-                 "obsmat frame period; default: estimated from its velocities")
-      ->check(non_negative());
+  if (input == GroupInput::kSceneFiles)
+    sub.add_option("--seconds-per-frame", options.seconds_per_frame,
+                   "obsmat frame period; default: estimated from its velocities")
+        ->check(non_negative());
 }
 
 }  // namespace bodyrec::cli

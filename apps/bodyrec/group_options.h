@@ -36,7 +36,11 @@ struct GroupCliOptions {
   double velocity_span() const { return velocity_span_given() ? groups.velocity_span_s : 0.4; }
 };
 
-// --window, --velocity-span, --half-life, --min-moving, --linkage, --seconds-per-frame.
-void add_group_options(CLI::App& sub, GroupCliOptions& options);
+// What the group options are for: scene files (train-groups, eval groups) also take --seconds-per-frame;
+// a video or camera run has its own frame times.
+enum class GroupInput { kSceneFiles, kFrames };
+
+// --window, --velocity-span, --half-life, --min-moving, --linkage, and with scene files --seconds-per-frame.
+void add_group_options(CLI::App& sub, GroupCliOptions& options, GroupInput input);
 
 }  // namespace bodyrec::cli

@@ -133,7 +133,7 @@ void add_groups_options(CLI::App& sub, GroupsJobOptions& o) {
   sub.add_option("--pixels-per-metre", p.pixels_per_metre,
                  "Without a ground plane: image scale (0 = from the first boxes, a person being 1.7 m tall)")
       ->capture_default_str();
-  add_group_options(sub, o.membership);
+  add_group_options(sub, o.membership, GroupInput::kFrames);
   sub.add_option("--motion-threshold", p.motion.threshold, "Three-frame difference threshold (thesis: 35)")
       ->capture_default_str();
   sub.add_option("--motion-max-deviation", p.motion.max_deviation,

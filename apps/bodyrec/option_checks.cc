@@ -1,11 +1,13 @@
 #include "option_checks.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <regex>
+#include <sstream>
 
 namespace bodyrec::cli {
 namespace {
@@ -164,8 +166,11 @@ std::string usage_message(const CLI::ParseError& error, const CLI::App& app) {
   }
   if (dynamic_cast<const CLI::ExtrasError*>(&error) && matches("The following arguments? (?:was|were) not expected: (.*)")) {
     const std::string what = g[1];
-    if (what.find(' ') == std::string::npos && what.size() > 1 && what[0] == '-')
-      return "unknown option " + what + " (see " + command_path(deepest_parsed(app)) + " --help)";
+    // An unknown option brings its value along as a second extra: name the option (not a negative number).
+    std::istringstream words(what);
+    for (std::string word; words >> word;)
+      if (word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.')
+        return "unknown option " + word + " (see " + command_path(deepest_parsed(app)) + " --help)";
     return "unexpected argument" + std::string(what.find(' ') == std::string::npos ? " " : "s ") + what + " (see " +
            command_path(deepest_parsed(app)) + " --help)";
   }

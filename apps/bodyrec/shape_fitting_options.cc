@@ -32,9 +32,10 @@ void add_shape_fitting_options(CLI::App& sub, ShapeFittingOptions& options) {
       ->check(in_range(-20, 20));
   sub.add_option("--threshold-offsets", options.threshold_offsets,
                  "mask-net models: average each landmark over the outlines at the threshold plus each of these "
-                 "logits (default -2,-1,0,1,2; 0 = one outline: faster, less accurate)")
+                 "logits (0 = one outline: faster, less accurate)")
       ->delimiter(',')
-      ->check(in_range(-20, 20));
+      ->check(in_range(-20, 20))
+      ->default_str("-2,-1,0,1,2");
   sub.add_flag("--no-mirror", options.no_mirror,
                "mask-net models: threshold the network's logits on the box alone, not their mean with its mirror "
                "image's (half the network passes: faster, slightly less accurate)");

@@ -281,9 +281,19 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   r = run_bodyrec({"make-contour-set", "--pennfudan", path("pf").string(), "--out", path("o").string(), "--box-margin",
                    "-0.5"});
   EXPECT_EQ(r.exit_code, 2);
-  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--nu", "0"});
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--method", "trees",
+                   "--nu", "0"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--nu")) << r.err;
+  // Options of the other method would be ignored: refused, naming the option.
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--method", "trees",
+                   "--net-size", "32x96"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "bodyrec: error: --net-size is a mask-net option; --method trees takes none\n");
+  r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--tree-depth", "3"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "bodyrec: error: --tree-depth is a trees option; --method mask-net takes none\n");
+  EXPECT_FALSE(fs::exists(path("x.dat")));
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("x.dat").string(), "--net-size", "30x90"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.err, "--net-size")) << r.err;
@@ -332,7 +342,7 @@ TEST_F(LandmarkCommands, ErrorsNameTheFileAndExitWithTheirCode) {
   EXPECT_TRUE(contains(r.err, "--holdout-every")) << r.err;
   // An output that cannot be written: processing error (4).
   r = run_bodyrec({"train-shape", path("set/train.xml").string(), "--out", path("no/such/dir/x.dat").string(),
-                   "--cascade-depth", "1", "--trees-per-level", "2"});
+                   "--method", "trees", "--cascade-depth", "1", "--trees-per-level", "2"});
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_TRUE(contains(r.err, "x.dat")) << r.err;
 }

@@ -126,8 +126,17 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
                      "--win-stride is a HOG option; a dlib fHOG model takes none");
   expect_usage_error({"track", v, "--model", "people.svm", "--motion", "on"},
                      "--motion is a HOG option; a dlib fHOG model takes none");
-  expect_usage_error({"detect", v, "--preset", "photo", "--local-height-margin", "0.2"},
+  expect_usage_error({"track", v, "--preset", "photo", "--local-height-margin", "0.2"},
                      "--local-height-margin is a HOG option; --preset photo uses the DPM detector");
+  // detect searches no tracks: the local-search options are not its own.
+  expect_usage_error({"detect", v, "--local-margin", "0.2"},
+                     "unknown option --local-margin (see bodyrec detect --help)");
+  expect_usage_error({"groups", v, "--seconds-per-frame", "0.1"},
+                     "unknown option --seconds-per-frame (see bodyrec groups --help)");
+  expect_usage_error({"landmark", v, "--detector", "hog", "--model", "people.svm"},
+                     "--detector hog and --model people.svm name two detectors: give one");
+  expect_usage_error({"landmark", v, "--local-margin", "0.2"}, "--local-margin requires --track");
+  expect_usage_error({"groups", v, "--sensor-id", "hall"}, "--sensor-id names the sensor in MQTT events: it needs --events");
   expect_usage_error({"groups", v, "--roles", "bosses"}, "--roles: 'bosses' is not one of groups, thesis, voting");
   expect_usage_error({"orient", "rec", "--views", "best"}, "--views: 'best' is not one of robust, thesis");
 }
