@@ -53,7 +53,7 @@ struct LandmarkCommand {
     BodyShapeModel model(shape_model_path(shape));
     fitting.apply(model);
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames);
+    auto people = make_detector(detector, *frames, track ? DetectorUse::kTrack : DetectorUse::kDetect);
     std::optional<DetectAndTrack> tracker;
     if (track) tracker.emplace(*people, tracking);
     RunSinks sinks(outputs, true, frames->fps().value_or(25.0));

@@ -38,7 +38,8 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, DetectorUse use, co
                                                                       {"foreground", DetectorPreset::kForeground},
                                                                       {"thesis", DetectorPreset::kThesis},
                                                                       {"opencv", DetectorPreset::kOpenCv}},
-                  "Detector preset: 'auto' (photo for still images, default for videos and cameras), "
+                  "Detector preset: 'auto' (photo for still images, default for videos and cameras, and for image "
+                  "folders and globs when the command tracks), "
                   "'default' (HOG tuned for video: motion regions, people 60-140 px, stride 8), "
                   "'photo' (still photos, people of any size: OpenCV's DPM with the INRIA person model), "
                   "'foreground' (one static camera's video, camera or image sequence of at least " +
@@ -174,8 +175,11 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   return std::make_unique<HogPeopleDetector>(h);
 }
 
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source) {
-  return make_detector(options, source.fps().has_value(), source.frame_count());
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source,
+                                              DetectorUse use) {
+  const std::optional<int> frames = source.frame_count();
+  const bool sequence = use == DetectorUse::kTrack && frames.value_or(2) > 1;
+  return make_detector(options, source.fps().has_value() || sequence, frames);
 }
 
 }  // namespace bodyrec::cli

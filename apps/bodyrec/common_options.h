@@ -74,7 +74,10 @@ void add_detector_options(CLI::App& sub, DetectorOptions& options, DetectorUse u
 std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, bool consecutive_frames = true,
                                               std::optional<int> frame_count = std::nullopt);
 
-// The same for the frames of `source` (a video or camera is consecutive frames; its frame count if known).
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source);
+// The same for the frames of `source`, with its frame count if known. A video or a camera is consecutive
+// frames; so are the images of a folder or glob (more than one) when the command tracks (`use`): tracking
+// reads them as one sequence, so --preset auto picks the video preset for them as for a video.
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source,
+                                              DetectorUse use);
 
 }  // namespace bodyrec::cli

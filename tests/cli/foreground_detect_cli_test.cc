@@ -34,6 +34,20 @@ TEST(ForegroundDetectCli, TracksTheOneMovingFigureOfAStaticCamera) {
   EXPECT_NEAR(box[3].get<double>(), 90, 3);
 }
 
+// --preset auto: a command that tracks reads a folder of images as one sequence (the video preset, HOG
+// around moving regions); detect reads it as unrelated photos (the photo detector).
+TEST(ForegroundDetectCli, AutoPresetTakesAFolderAsASequenceWhenTracking) {
+  TempDir dir;
+  const std::string frames = walking_figure(dir / "frames").string();
+  const RunResult track = run_bodyrec({"track", frames, "--max-frames", "3", "--jsonl", (dir / "t.jsonl").string()});
+  ASSERT_EQ(track.exit_code, 0) << track.err;
+  EXPECT_TRUE(contains(track.err, "OpenCV HOG")) << track.err;
+  EXPECT_TRUE(contains(track.err, "motion regions")) << track.err;
+  const RunResult photo = run_bodyrec({"detect", frames, "--max-frames", "1", "--jsonl", (dir / "d.jsonl").string()});
+  ASSERT_EQ(photo.exit_code, 0) << photo.err;
+  EXPECT_TRUE(contains(photo.err, "DPM")) << photo.err;
+}
+
 TEST(ForegroundDetectCli, HogOptionsAreRefused) {
   TempDir dir;
   const std::string frames = walking_figure(dir / "frames").string();
