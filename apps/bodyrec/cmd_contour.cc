@@ -14,6 +14,7 @@
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
 #include "rgbd_input.h"
+#include "run_sinks.h"
 #include "segment_options.h"
 #include "option_checks.h"
 
@@ -101,6 +102,7 @@ struct ContourCommand {
       }
       if (images) images->write(f.index, annotate(f.depth, meta.depth_unit_m, ccd, bodies));
     });
+    if (images) note_stale_frames(images->stale_note());
     const int frames = stats.frames;
     const double per_frame = frames ? ms / frames : 0.0;
     if (!quiet || json)

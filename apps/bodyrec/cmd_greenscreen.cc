@@ -10,11 +10,13 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/frame_folder.h"
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/rgbd/green_screen.h"
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
 #include "rgbd_input.h"
+#include "run_sinks.h"
 #include "segment_options.h"
 #include "stop_signal.h"
 
@@ -39,9 +41,7 @@ struct GreenScreenCommand {
     std::optional<DepthSegmenter> segmenter;  // no body index: people from depth alone
     if (!s.body_index)
       segmenter = input.recording() ? make_segmenter(*input.recording(), seg) : make_segmenter(input.meta(), seg);
-    std::error_code ec;
-    std::filesystem::create_directories(out, ec);
-    if (ec) throw ProcessingError(out + ": cannot create (" + ec.message() + ")");
+    FrameFolder folder(out);
     BackgroundRemoval removal(input.meta());
     std::array<cv::Mat, kMaxBodies> cutouts;
     int written = 0;
@@ -53,11 +53,12 @@ struct GreenScreenCommand {
       ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       for (int b = 0; b < kMaxBodies; ++b) {
         if (cutouts[static_cast<size_t>(b)].empty()) continue;
-        const std::string file = out + "/" + frame_stem(f.index) + "_body" + std::to_string(b) + ".png";
+        const std::string file = folder.file(f.index, "_body" + std::to_string(b));
         if (!cv::imwrite(file, cutouts[static_cast<size_t>(b)])) throw ProcessingError(file + ": cannot write image");
         ++written;
       }
     });
+    note_stale_frames(folder.stale_note());
     const int frames = stats.frames;
     const double per_frame = frames ? ms / frames : 0.0;
     const char* bodies_from = segmenter ? "bodies from depth segmentation" : "bodies from the body index";

@@ -78,6 +78,7 @@ struct LandmarkCommand {
       write(sinks, frame, found);
       progress.update(++count);
     }
+    sinks.note_stale();
     if (StopOnSignal::requested()) std::cerr << "bodyrec landmark: stopped by a signal after " << count << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())
       std::cerr << "bodyrec landmark: " << count << " frames, " << persons << " people landmarked, "

@@ -3,17 +3,20 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "bodyrec/core/error.h"
+#include "bodyrec/io/frame_folder.h"
 #include "bodyrec/io/json_numbers.h"
 #include "bodyrec/io/sinks.h"
 #include "bodyrec/rgbd/recording.h"
 #include "bodyrec/rgbd/segment.h"
 #include "command.h"
 #include "rgbd_input.h"
+#include "run_sinks.h"
 #include "segment_options.h"
 
 namespace bodyrec::cli {
@@ -31,11 +34,8 @@ struct SegmentCommand {
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run with its outputs whole
     RgbdInput input(recording, live);
     if (!input.meta().streams.depth) throw InputError(input.name() + ": segment needs a depth stream");
-    if (!masks.empty()) {
-      std::error_code ec;
-      std::filesystem::create_directories(masks, ec);
-      if (ec) throw ProcessingError(masks + ": cannot create (" + ec.message() + ")");
-    }
+    std::optional<FrameFolder> mask_files;
+    if (!masks.empty()) mask_files.emplace(masks);
     DepthSegmenter segmenter =
         input.recording() ? make_segmenter(*input.recording(), seg) : make_segmenter(input.meta(), seg);
     std::unique_ptr<JsonlWriter> out;
@@ -52,11 +52,12 @@ struct SegmentCommand {
         if (live.live()) line["dropped"] = arrival.dropped;
         out->write(line);
       }
-      if (!masks.empty()) {
-        const std::string file = masks + "/" + frame_stem(f.index) + ".png";
+      if (mask_files) {
+        const std::string file = mask_files->file(f.index);
         if (!cv::imwrite(file, s.labels)) throw ProcessingError(file + ": cannot write image");
       }
     });
+    if (mask_files) note_stale_frames(mask_files->stale_note());
     const int frames = stats.frames;
     const double per_frame = frames ? ms / frames : 0.0;
     if (!quiet || json)

@@ -51,6 +51,7 @@ DetectionRunStats run_detection(FrameSource& source, PeopleDetector& detector, c
     if (on_frame) on_frame(frame, detections);
     progress.update(stats.frames);
   }
+  sinks.note_stale();
   stats.stopped = StopOnSignal::requested();
   return stats;
 }

@@ -193,6 +193,7 @@ GroupsRunStats run_groups(FrameSource& source, PeopleDetector& detector, const G
     if (on_frame) on_frame(frame, r.groups);
     progress.update(stats.frames);
   }
+  sinks.note_stale();
   stats.stopped = StopOnSignal::requested();
   return stats;
 }

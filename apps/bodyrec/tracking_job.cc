@@ -97,6 +97,7 @@ TrackingRunStats run_tracking(FrameSource& source, PeopleDetector& detector, con
     if (on_frame) on_frame(frame, tracks);
     progress.update(stats.frames);
   }
+  sinks.note_stale();
   stats.stopped = StopOnSignal::requested();
   return stats;
 }

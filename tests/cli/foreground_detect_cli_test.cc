@@ -48,6 +48,22 @@ TEST(ForegroundDetectCli, AutoPresetTakesAFolderAsASequenceWhenTracking) {
   EXPECT_TRUE(contains(photo.err, "DPM")) << photo.err;
 }
 
+// A shorter run into a folder of annotated frames says that the earlier run's later frames are still there.
+TEST(ForegroundDetectCli, AShorterRunIntoAnAnnotatedFolderNamesTheEarlierFramesLeft) {
+  TempDir dir;
+  const std::string frames = walking_figure(dir / "frames").string();
+  const std::string out = (dir / "annotated").string();
+  const RunResult first = run_bodyrec({"detect", frames, "--preset", "opencv", "--max-frames", "10", "--annotate", out, "-q"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_FALSE(contains(first.err, "note:")) << first.err;
+  const RunResult second = run_bodyrec({"detect", frames, "--preset", "opencv", "--max-frames", "4", "--annotate", out, "-q"});
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_EQ(second.err, "bodyrec: note: " + out +
+                            " holds 6 frame files of an earlier run that this run did not replace (000004.png ... "
+                            "000009.png)\n");
+  EXPECT_TRUE(std::filesystem::exists(dir / "annotated" / "000009.png"));
+}
+
 TEST(ForegroundDetectCli, HogOptionsAreRefused) {
   TempDir dir;
   const std::string frames = walking_figure(dir / "frames").string();

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -72,9 +71,7 @@ AnnotatedWriter::AnnotatedWriter(const std::string& path, double fps)
   if (is_video_) {
     make_parent_dirs(path);
   } else {
-    std::error_code ec;
-    fs::create_directories(path, ec);
-    if (ec) throw ProcessingError("cannot create folder " + path + ": " + ec.message());
+    folder_.emplace(path);
   }
 }
 
@@ -82,9 +79,7 @@ AnnotatedWriter::~AnnotatedWriter() { video_.release(); }
 
 void AnnotatedWriter::write(int frame_index, const cv::Mat& image) {
   if (!is_video_) {
-    std::ostringstream name;
-    name << std::setw(6) << std::setfill('0') << frame_index << ".png";
-    const std::string file = (fs::path(path_) / name.str()).string();
+    const std::string file = folder_->file(frame_index);
     if (!cv::imwrite(file, image)) throw ProcessingError("cannot write " + file);
     return;
   }

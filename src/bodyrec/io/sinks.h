@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "bodyrec/core/geometry.h"
+#include "bodyrec/io/frame_folder.h"
 
 namespace bodyrec {
 
@@ -50,11 +52,15 @@ class AnnotatedWriter {
   ~AnnotatedWriter();
   void write(int frame_index, const cv::Mat& image);
   const std::string& path() const { return path_; }
+  // A folder's frame files from an earlier run that this run did not replace (FrameFolder::stale_note);
+  // "" for a video or when there are none.
+  std::string stale_note() const { return folder_ ? folder_->stale_note() : ""; }
 
  private:
   std::string path_;
   double fps_;
   bool is_video_;
+  std::optional<FrameFolder> folder_;
   cv::VideoWriter video_;
   cv::Size size_;  // the video's frame size
 };
