@@ -70,7 +70,7 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, DetectorUse use, co
   for (CLI::Option* opt : {o.o_hit, o.o_stride, o.o_padding, o.o_scale, o.o_group, o.o_resize, o.o_levels, o.o_adapt,
                            o.o_motion_margin})
     opt->default_str("preset");
-  sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4)->default_str("");
+  sub.add_option("--roi", o.roi, "Only search this region: X Y W H (frame pixels)")->expected(4);
   add_enum_option(sub, "--motion", o.motion,
                   std::vector<std::pair<std::string, MotionChoice>>{
                       {"on", MotionChoice::kOn}, {"off", MotionChoice::kOff}, {"preset", MotionChoice::kPreset}},

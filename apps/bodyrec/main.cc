@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     command.add(command.parent == "eval" ? *eval : app);
   }
   bodyrec::cli::check_numbers_everywhere(app);  // NaN, infinities and non-numbers: usage errors everywhere
+  bodyrec::cli::hide_empty_list_defaults_everywhere(app);
   bodyrec::cli::check_output_paths_everywhere(app);  // no output overwrites an input or another output
 
   try {

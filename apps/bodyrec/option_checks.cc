@@ -142,6 +142,12 @@ CLI::Validator one_of(std::vector<std::string> choices) {
 
 void check_numbers_everywhere(CLI::App& app) { add_number_checks(app); }
 
+void hide_empty_list_defaults_everywhere(CLI::App& app) {
+  for (CLI::Option* option : app.get_options())
+    if (option->get_default_str() == "[]") option->default_str("");
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) hide_empty_list_defaults_everywhere(*sub);
+}
+
 std::string one_line(std::string text) {
   for (char& c : text)
     if (c == '\n' || c == '\r' || c == '\t') c = ' ';

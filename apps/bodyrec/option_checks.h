@@ -26,6 +26,10 @@ CLI::Validator one_of(std::vector<std::string> choices);
 // tree is built, before parsing.
 void check_numbers_everywhere(CLI::App& app);
 
+// Options of `app` and its subcommands whose default is an empty list (repeatable or several values, such
+// as --eval or --roi) show no default in --help: CLI11 would print "=[]".
+void hide_empty_list_defaults_everywhere(CLI::App& app);
+
 // `text` on one line: newlines, carriage returns and tabs become spaces, trailing spaces go.
 std::string one_line(std::string text);
 

@@ -74,8 +74,8 @@ TEST(UsageErrors, NanAndInfinityAreRefusedByFloatOptions) {
   expect_usage_error({"eval", "orient", "rec", "--min-visible", "inf"}, "--min-visible: inf is not a finite number");
 }
 
-// Every command, the gallery's and eval's included: its first floating-point option given NaN (or +-inf).
-TEST(UsageErrors, EveryCommandsFloatOptionsRefuseNan) {
+// Every command, the gallery's and eval's included.
+std::vector<std::vector<std::string>> every_command() {
   std::vector<std::vector<std::string>> commands;
   for (const std::string& name : subcommands({})) {
     if (name == "eval" || name == "gallery") {
@@ -84,6 +84,12 @@ TEST(UsageErrors, EveryCommandsFloatOptionsRefuseNan) {
       commands.push_back({name});
     }
   }
+  return commands;
+}
+
+// Every command's first floating-point option given NaN (or +-inf).
+TEST(UsageErrors, EveryCommandsFloatOptionsRefuseNan) {
+  const std::vector<std::vector<std::string>> commands = every_command();
   ASSERT_GE(commands.size(), 25u);
   const char* values[] = {"nan", "inf", "-inf", "-nan"};
   int tried = 0;
@@ -97,6 +103,16 @@ TEST(UsageErrors, EveryCommandsFloatOptionsRefuseNan) {
     expect_usage_error(args, option->first + ": " + value + " is not a finite number");
   }
   EXPECT_GE(tried, 20);
+}
+
+// No --help shows an empty list as a default (CLI11's "=[]" for repeatable options such as --eval).
+TEST(UsageErrors, HelpShowsNoEmptyListDefaults) {
+  for (std::vector<std::string> command : every_command()) {
+    command.push_back("--help");
+    const RunResult r = run_bodyrec(command);
+    EXPECT_EQ(r.exit_code, 0) << command[0];
+    EXPECT_FALSE(contains(r.out, "=[]")) << command[0] << ":\n" << r.out;
+  }
 }
 
 TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
