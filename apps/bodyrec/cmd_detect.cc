@@ -18,7 +18,7 @@ struct DetectCommand {
   void run() const {
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame, outputs whole, exit 0
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, DetectorUse::kDetect);
+    auto people = make_detector(detector, *frames);
     const auto stats = run_detection(*frames, *people, outputs, true, nullptr);
     if (stats.stopped) std::cerr << "bodyrec detect: stopped by a signal after " << stats.frames << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())

@@ -62,7 +62,7 @@ struct EvalDetectCommand {
       truth_frames = truth.frame_count;
       frames = open_source(source);
     }
-    auto people = make_detector(detector, *frames, DetectorUse::kDetect);
+    auto people = make_detector(detector, *frames);
     DetectionEvaluator evaluator(iou);
     const std::vector<LabelledBox> none;
     const auto stats = run_detection(*frames, *people, outputs, !outputs.jsonl.empty(),

@@ -34,7 +34,7 @@ struct EvalRolesCommand {
     for (const auto& l : read_roles_csv(gt)) labelled[l.frame].push_back({l.box, l.role});
     if (labelled.empty()) throw InputError(gt + ": no labelled boxes");
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, DetectorUse::kTrack);
+    auto people = make_detector(detector, *frames);
     RoleEvaluator evaluator(iou);
     const auto stats = run_groups(*frames, *people, groups, outputs, !outputs.jsonl.empty(),
                                   [&](const Frame& frame, const GroupFrame& g) {

@@ -30,7 +30,7 @@ struct EvalTrackCommand {
     const GroundTruth truth = read_ground_truth(gt);
     const auto truth_by_frame = truth.by_frame();
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, DetectorUse::kTrack);
+    auto people = make_detector(detector, *frames);
     TrackingEvaluator evaluator(iou);
     const std::vector<LabelledBox> none;
     const auto stats = run_tracking(

@@ -33,7 +33,7 @@ struct GroupsCommand {
       throw UsageError("--sensor-id names the sensor in MQTT events: it needs --events");
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame: outputs whole, summary written, exit 0
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, DetectorUse::kTrack);
+    auto people = make_detector(detector, *frames);
     RunEvents events = open_events(event_options, "groups");
     GroupFrame previous;
     int last_frame = -1;

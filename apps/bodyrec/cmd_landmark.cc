@@ -53,7 +53,8 @@ struct LandmarkCommand {
     BodyShapeModel model(shape_model_path(shape));
     fitting.apply(model);
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, track ? DetectorUse::kTrack : DetectorUse::kDetect);
+    if (!track) detector.use = DetectorUse::kDetect;  // one detection per image, no sequence
+    auto people = make_detector(detector, *frames);
     std::optional<DetectAndTrack> tracker;
     if (track) tracker.emplace(*people, tracking);
     RunSinks sinks(outputs, true, frames->fps().value_or(25.0));

@@ -38,8 +38,7 @@ struct ReportCommand {
       return InputError(source + ": ends before frame " + std::to_string(index) + " of " + run_path +
                         " (is it the run's input?)");
     };
-    std::error_code ec;
-    if (std::filesystem::exists(std::filesystem::path(source) / "meta.json", ec)) {
+    if (is_recording_directory(source)) {
       const RecordingReader recording(source);
       if (!recording.meta().streams.color) throw InputError(source + ": the recording has no colour frames to show");
       for (int index : chosen) {

@@ -20,7 +20,7 @@ struct TrackCommand {
     tracking.tracker.check();
     StopOnSignal stop;  // SIGINT/SIGTERM end a live run after its frame, outputs whole, exit 0
     auto frames = open_source(source);
-    auto people = make_detector(detector, *frames, DetectorUse::kTrack);
+    auto people = make_detector(detector, *frames);
     const auto stats = run_tracking(*frames, *people, tracking, outputs, true, nullptr);
     if (stats.stopped) std::cerr << "bodyrec track: stopped by a signal after " << stats.frames << " frames\n";
     if (!outputs.quiet && !outputs.jsonl.empty())

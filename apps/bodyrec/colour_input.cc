@@ -1,9 +1,8 @@
 #include "colour_input.h"
 
-#include <filesystem>
-
 #include "bodyrec/core/error.h"
 #include "bodyrec/detection/foreground_detector.h"
+#include "bodyrec/rgbd/recording.h"
 #include "enum_option.h"
 #include "option_checks.h"
 #include "shape_body_mask.h"
@@ -63,8 +62,7 @@ void refuse_plain_camera_options(const ColourCliOptions& options, const std::str
 bool is_colour_input(const std::string& path, const ColourCliOptions& options) {
   if (options.camera >= 0 || options.colour_only) return true;
   if (path.size() > 9 && path.compare(path.size() - 9, 9, ".skeleton") == 0) return false;
-  std::error_code ec;
-  return !(std::filesystem::is_directory(path, ec) && std::filesystem::exists(std::filesystem::path(path) / "meta.json", ec));
+  return !is_recording_directory(path);
 }
 
 std::unique_ptr<ColourInput> open_colour_input(const std::string& path, const ColourCliOptions& o, bool use_faces,

@@ -31,6 +31,7 @@ void add_output_options(CLI::App& sub, OutputOptions& o) {
 }
 
 void add_detector_options(CLI::App& sub, DetectorOptions& o, DetectorUse use, const std::string& model_flag) {
+  o.use = use;
   add_enum_option(sub, "--preset", o.preset,
                   std::vector<std::pair<std::string, DetectorPreset>>{{"auto", DetectorPreset::kAuto},
                                                                       {"default", DetectorPreset::kDefault},
@@ -175,10 +176,9 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& o, bool con
   return std::make_unique<HogPeopleDetector>(h);
 }
 
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source,
-                                              DetectorUse use) {
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source) {
   const std::optional<int> frames = source.frame_count();
-  const bool sequence = use == DetectorUse::kTrack && frames.value_or(2) > 1;
+  const bool sequence = options.use == DetectorUse::kTrack && frames.value_or(2) > 1;
   return make_detector(options, source.fps().has_value() || sequence, frames);
 }
 

@@ -40,6 +40,11 @@ enum class DetectorPreset {
 // --motion: HOG's search around moving regions.
 enum class MotionChoice { kPreset, kOn, kOff };
 
+// What a command does with its detector: a tracking command also searches around its tracks between full
+// detections (--local-margin, --local-height-margin) and reads any input as one sequence; a detecting one
+// does neither, so has no such options.
+enum class DetectorUse { kDetect, kTrack };
+
 // Detector choice and every HOG parameter; explicitly given options override the preset's values.
 struct DetectorOptions {
   DetectorPreset preset = DetectorPreset::kAuto;
@@ -52,15 +57,12 @@ struct DetectorOptions {
   std::vector<int> roi;
   MotionChoice motion = MotionChoice::kPreset;
   std::vector<CLI::Option*> given;  // filled by add_detector_options
+  DetectorUse use = DetectorUse::kDetect;  // set by add_detector_options
   CLI::Option *o_hit = nullptr, *o_stride = nullptr, *o_padding = nullptr, *o_scale = nullptr,
               *o_group = nullptr, *o_resize = nullptr, *o_levels = nullptr, *o_hog_model = nullptr,
               *o_adapt = nullptr, *o_motion_margin = nullptr, *o_nms = nullptr, *o_local_margin = nullptr,
               *o_local_height_margin = nullptr;
 };
-
-// What a command does with its detector: a tracking command also searches around its tracks between full
-// detections (--local-margin, --local-height-margin); a detecting one does not, so has no such options.
-enum class DetectorUse { kDetect, kTrack };
 
 // `model_flag` names the fHOG model option (`--model`; a command whose --model is something else renames it).
 void add_detector_options(CLI::App& sub, DetectorOptions& options, DetectorUse use,
@@ -75,9 +77,8 @@ std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, bo
                                               std::optional<int> frame_count = std::nullopt);
 
 // The same for the frames of `source`, with its frame count if known. A video or a camera is consecutive
-// frames; so are the images of a folder or glob (more than one) when the command tracks (`use`): tracking
-// reads them as one sequence, so --preset auto picks the video preset for them as for a video.
-std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source,
-                                              DetectorUse use);
+// frames; so are the images of a folder or glob (more than one) when the command tracks (`options.use`):
+// tracking reads them as one sequence, so --preset auto picks the video preset for them as for a video.
+std::unique_ptr<PeopleDetector> make_detector(const DetectorOptions& options, const FrameSource& source);
 
 }  // namespace bodyrec::cli

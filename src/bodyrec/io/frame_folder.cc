@@ -28,10 +28,14 @@ FrameFolder::FrameFolder(std::string dir) : dir_(std::move(dir)) {
   }
 }
 
-std::string FrameFolder::file(int frame, const std::string& tag) {
+std::string frame_stem(int index) {
   char digits[16];
-  std::snprintf(digits, sizeof digits, "%06d", frame);
-  const std::string name = digits + tag + ".png";
+  std::snprintf(digits, sizeof digits, "%06d", index);
+  return digits;
+}
+
+std::string FrameFolder::file(int frame, const std::string& tag) {
+  const std::string name = frame_stem(frame) + tag + ".png";
   written_.insert(name);
   return (fs::path(dir_) / name).string();
 }

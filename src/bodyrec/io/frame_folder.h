@@ -33,6 +33,9 @@ class FrameFolder {
   std::set<std::string> earlier_, written_;  // file names
 };
 
+// "000042": the zero-padded file stem of frame 42 (frame folders, recordings).
+std::string frame_stem(int index);
+
 // True when `name` is a frame file name: 6 digits, then optionally more, ending ".png".
 bool is_frame_file_name(const std::string& name);
 

@@ -14,15 +14,19 @@
 namespace bodyrec::report {
 namespace {
 
+// Leaders of a groups row being tracked (not lost).
+int tracking_leaders(const GroupsFrameRow& row) {
+  int n = 0;
+  for (const auto& l : row.leaders) n += l.state == "tracking";
+  return n;
+}
+
 // The rows that can be shown: a re-identification run's closing "end" row is not a frame.
 std::vector<std::pair<double, int>> scored_frames(const RunData& run) {
   std::vector<std::pair<double, int>> scored;  // (score, frame)
   if (run.kind == RunKind::kGroups) {
-    for (const auto& row : run.groups) {
-      int tracking = 0;
-      for (const auto& l : row.leaders) tracking += l.state == "tracking";
-      scored.emplace_back(tracking * 10.0 + static_cast<double>(row.people.size()), row.frame);
-    }
+    for (const auto& row : run.groups)
+      scored.emplace_back(tracking_leaders(row) * 10.0 + static_cast<double>(row.people.size()), row.frame);
   } else {
     for (const auto& row : run.reid) {
       if (row.end) continue;
@@ -77,10 +81,8 @@ void annotate_groups_frame(cv::Mat& image, const GroupsFrameRow& row) {
     cv::arrowedLine(image, from, from + cv::Point2d(std::cos(a), -std::sin(a)) * length, colors::kYellow, 2,
                     cv::LINE_AA, 0, 0.25);
   }
-  int tracking = 0;
-  for (const auto& l : row.leaders) tracking += l.state == "tracking";
   draw_caption(image, "frame " + std::to_string(row.frame) + "  people " + std::to_string(row.people.size()) +
-                          "  leaders " + std::to_string(tracking));
+                          "  leaders " + std::to_string(tracking_leaders(row)));
 }
 
 void annotate_reid_frame(cv::Mat& image, const ReidFrameRow& row) {
@@ -98,8 +100,7 @@ std::string annotate_key_frame(cv::Mat& image, const RunData& run, int frame) {
   if (run.kind == RunKind::kGroups) {
     const auto row = std::find_if(run.groups.begin(), run.groups.end(), [&](const auto& r) { return r.frame == frame; });
     annotate_groups_frame(image, *row);
-    int leaders = 0;
-    for (const auto& l : row->leaders) leaders += l.state == "tracking";
+    const int leaders = tracking_leaders(*row);
     return "frame " + std::to_string(frame) + " · " + std::to_string(row->people.size()) + " people · " +
            std::to_string(leaders) + (leaders == 1 ? " leader" : " leaders");
   }

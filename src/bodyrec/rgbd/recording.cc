@@ -94,10 +94,9 @@ void check_joint_positions(const std::vector<Body>& bodies, const Intrinsics& de
     }
 }
 
-std::string frame_stem(int index) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%06d", index);
-  return buf;
+bool is_recording_directory(const std::string& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec) && fs::exists(fs::path(path) / "meta.json", ec);
 }
 
 void validate_frame(const RgbdFrame& f, const RecordingMeta& m, const std::string& where) {

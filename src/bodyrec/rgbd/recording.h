@@ -24,6 +24,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <opencv2/core.hpp>
 
+#include "bodyrec/io/frame_folder.h"  // frame_stem: recordings name their frame files the same way
 #include "bodyrec/rgbd/camera.h"
 #include "bodyrec/rgbd/skeleton.h"
 
@@ -118,8 +119,8 @@ void check_joint_positions(const std::vector<Body>& bodies, const Intrinsics& de
 // unique, quaternions, joint positions). Throws InputError naming `where` and the field.
 void validate_frame(const RgbdFrame& frame, const RecordingMeta& meta, const std::string& where);
 
-// "000042": the zero-padded file stem of frame 42.
-std::string frame_stem(int index);
+// True when `path` is a recording's directory (it holds meta.json); says nothing of its validity.
+bool is_recording_directory(const std::string& path);
 
 class RecordingReader {
  public:
