@@ -34,6 +34,8 @@ bodyrec_find_package(PostgreSQL REQUIRED)
 bodyrec_find_package(nlohmann_json 3 REQUIRED)
 bodyrec_find_package(pugixml REQUIRED)
 bodyrec_find_package(Threads REQUIRED)
+# zlib's crc32: image files are checked before they are decoded (io/image_file.h).
+bodyrec_find_package(ZLIB REQUIRED)
 bodyrec_find_package(OpenMP REQUIRED COMPONENTS CXX)
 
 # LZF decompression of binary_compressed PCD clouds (liblzf-dev).

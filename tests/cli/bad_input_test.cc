@@ -157,6 +157,24 @@ TEST(BadInput, TruncatedPngAndJpegAreOneLineErrorsAfterTheFramesBefore) {
   expect_frames_written(dir / "s.jsonl", 2);
 }
 
+// A PNG damaged in the middle (one byte of its image data changed, length kept): bodyrec's one line, not
+// libpng's "IDAT: CRC error" before it.
+TEST(BadInput, APngCorruptInTheMiddleIsAOneLineError) {
+  TempDir dir;
+  fs::create_directories(dir / "in");
+  cv::imwrite((dir / "in" / "a.png").string(), noise_image());
+  std::string bytes = read_text(dir / "in" / "a.png");
+  const size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  bytes[idat + 100] = static_cast<char>(bytes[idat + 100] ^ 0x5a);
+  write_text(dir / "in" / "b.png", bytes);
+  const RunResult r = detect(dir / "in", dir / "d.jsonl");
+  expect_one_line_error(r, 3,
+                        (dir / "in" / "b.png").string() + ": corrupt PNG file (chunk IDAT at byte " +
+                            std::to_string(idat - 4) + " fails its CRC check) (frame 1)");
+  expect_frames_written(dir / "d.jsonl", 1);
+}
+
 TEST(BadInput, ImageWhereAVideoOrRecordingIsExpected) {
   TempDir dir;
   cv::imwrite((dir / "frame.png").string(), noise_image());

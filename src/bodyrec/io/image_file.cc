@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <opencv2/imgcodecs.hpp>
+#include <zlib.h>
 
 #include "bodyrec/core/error.h"
 #include "bodyrec/io/image_header.h"
@@ -19,13 +20,24 @@ bool starts_with(const std::string& bytes, const char* prefix, size_t n) {
   return bytes.size() >= n && std::memcmp(bytes.data(), prefix, n) == 0;
 }
 
-// A PNG is a signature and chunks (4-byte big-endian length, type, data, CRC); it ends with IEND.
+uint32_t big_endian32(const unsigned char* p) {
+  return (uint32_t{p[0]} << 24) | (uint32_t{p[1]} << 16) | (uint32_t{p[2]} << 8) | uint32_t{p[3]};
+}
+
+// A PNG is a signature and chunks (4-byte big-endian length, type, data, CRC of type and data); it ends
+// with IEND. Every chunk's CRC is checked here: on a mismatch libpng would print a line of its own before
+// failing.
 std::string png_reason(const std::string& bytes) {
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   size_t at = 8;
   while (at + 8 <= bytes.size()) {
-    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
-    const uint64_t length = (uint64_t{p[0]} << 24) | (p[1] << 16) | (p[2] << 8) | p[3];
-    if (std::memcmp(p + 4, "IEND", 4) == 0 && at + 12 <= bytes.size()) return "";
+    const unsigned char* p = data + at;
+    const uint64_t length = big_endian32(p);
+    if (at + 12 + length > bytes.size()) break;
+    const std::string type(reinterpret_cast<const char*>(p + 4), 4);
+    if (crc32(crc32(0L, Z_NULL, 0), p + 4, static_cast<uInt>(4 + length)) != big_endian32(p + 8 + length))
+      return "corrupt PNG file (chunk " + type + " at byte " + std::to_string(at) + " fails its CRC check)";
+    if (type == "IEND") return "";
     at += 12 + length;
   }
   return "truncated PNG file (" + std::to_string(bytes.size()) + " bytes, no IEND chunk)";
@@ -43,7 +55,7 @@ std::string jpeg_reason(const std::string& bytes) {
 
 }  // namespace
 
-std::string truncated_image_reason(const std::string& bytes) {
+std::string broken_image_reason(const std::string& bytes) {
   if (starts_with(bytes, "\x89PNG\r\n\x1a\n", 8)) return png_reason(bytes);
   if (starts_with(bytes, "\xFF\xD8\xFF", 3)) return jpeg_reason(bytes);
   return "";
@@ -62,8 +74,8 @@ cv::Mat read_image_file(const std::string& path, int flags) {
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
   if (bytes.empty()) throw InputError(path + ": empty file");
-  const std::string truncated = truncated_image_reason(bytes);
-  if (!truncated.empty()) throw InputError(path + ": " + truncated);
+  const std::string broken = broken_image_reason(bytes);
+  if (!broken.empty()) throw InputError(path + ": " + broken);
   cv::Mat image;
   try {
     image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), flags);

@@ -24,21 +24,33 @@ std::string encoded(const char* ext, std::vector<int> params = {}) {
 
 TEST(ImageFile, CompleteFilesPassAndCutFilesAreTruncated) {
   for (const std::string& whole : {encoded(".png"), encoded(".jpg"), encoded(".jpg", {cv::IMWRITE_JPEG_PROGRESSIVE, 1})}) {
-    EXPECT_EQ(truncated_image_reason(whole), "");
-    EXPECT_EQ(truncated_image_reason(whole + "trailing bytes after the end"), "");  // some writers append data
+    EXPECT_EQ(broken_image_reason(whole), "");
+    EXPECT_EQ(broken_image_reason(whole + "trailing bytes after the end"), "");  // some writers append data
     for (const size_t keep : {whole.size() / 2, whole.size() - 1, size_t{20}})
-      EXPECT_TRUE(contains(truncated_image_reason(whole.substr(0, keep)), "truncated")) << keep;
+      EXPECT_TRUE(contains(broken_image_reason(whole.substr(0, keep)), "truncated")) << keep;
   }
-  EXPECT_EQ(truncated_image_reason(encoded(".png").substr(0, 100)),
+  EXPECT_EQ(broken_image_reason(encoded(".png").substr(0, 100)),
             "truncated PNG file (100 bytes, no IEND chunk)");
-  EXPECT_EQ(truncated_image_reason(encoded(".jpg").substr(0, 100)),
+  EXPECT_EQ(broken_image_reason(encoded(".jpg").substr(0, 100)),
             "truncated JPEG file (100 bytes, no image scan)");
   const std::string jpg = encoded(".jpg");
-  EXPECT_EQ(truncated_image_reason(jpg.substr(0, jpg.size() - 2)),
+  EXPECT_EQ(broken_image_reason(jpg.substr(0, jpg.size() - 2)),
             "truncated JPEG file (" + std::to_string(jpg.size() - 2) + " bytes, no end-of-image marker)");
   // Other formats are left to the decoder.
-  EXPECT_EQ(truncated_image_reason(encoded(".bmp").substr(0, 100)), "");
-  EXPECT_EQ(truncated_image_reason(""), "");
+  EXPECT_EQ(broken_image_reason(encoded(".bmp").substr(0, 100)), "");
+  EXPECT_EQ(broken_image_reason(""), "");
+}
+
+TEST(ImageFile, APngChunkThatFailsItsCrcIsCorrupt) {
+  const std::string whole = encoded(".png");
+  const size_t idat = whole.find("IDAT") - 4;  // the chunk starts with its length
+  for (const size_t at : {size_t{20}, idat + 30, whole.size() - 2}) {  // IHDR's width, image data, IEND's CRC
+    std::string bad = whole;
+    bad[at] = static_cast<char>(bad[at] ^ 1);
+    const std::string chunk = at < idat ? "IHDR at byte 8" : at < whole.size() - 12 ? "IDAT at byte " + std::to_string(idat)
+                                                                                    : "IEND at byte " + std::to_string(whole.size() - 12);
+    EXPECT_EQ(broken_image_reason(bad), "corrupt PNG file (chunk " + chunk + " fails its CRC check)") << at;
+  }
 }
 
 TEST(ImageFile, BadFilesAreInputErrorsNamingTheFile) {
