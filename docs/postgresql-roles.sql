@@ -21,9 +21,14 @@ GRANT USAGE, CREATE ON SCHEMA public TO bodyrec_admin;
 GRANT USAGE ON SCHEMA public TO bodyrec_sensor;
 
 -- Part 2, as bodyrec_admin after `bodyrec gallery --gallery postgresql://bodyrec_admin@HOST/DB init`
--- (the tables exist then; a later schema upgrade adds columns, not tables, so these grants hold):
+-- (the tables exist then). A gallery made before schema 4 gets table event_spools when the admin first
+-- opens it with this bodyrec: run the last GRANT then (until it is run, a sensor's reid --events warns
+-- that the gallery does not list its spool, and goes on).
 GRANT SELECT ON bodyrec_gallery TO bodyrec_sensor;
 GRANT SELECT, UPDATE ON gallery_state TO bodyrec_sensor;
 GRANT SELECT, INSERT, UPDATE ON users, scans TO bodyrec_sensor;
 GRANT SELECT, INSERT, DELETE ON events TO bodyrec_sensor;
 GRANT USAGE ON SEQUENCE users_id_seq, scans_id_seq, events_id_seq TO bodyrec_sensor;
+-- reid --events lists its event spool, so that forget, purge and prune scrub it (schema 4); DELETE takes a
+-- spool whose file is gone off the list (gallery spools --scrub): it names files, not people.
+GRANT SELECT, INSERT, UPDATE, DELETE ON event_spools TO bodyrec_sensor;

@@ -2,8 +2,10 @@
 // show one, export one (right of access), forget one, purge all, prune by retention time; the same on an
 // SQLite file and on a PostgreSQL database (issue 47). Only `init` creates a gallery: elsewhere a missing
 // file or an empty database is an input error.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,8 +17,8 @@
 #include "bodyrec/store/gallery_export.h"
 #include "bodyrec/store/gallery_json.h"
 #include "command.h"
-#include "event_options.h"
 #include "gallery_options.h"
+#include "gallery_spools.h"
 
 namespace bodyrec::cli {
 namespace {
@@ -25,7 +27,7 @@ struct GalleryCommand {
   GalleryCliOptions gallery;
   std::string user, dir, unseen_for, label;
   std::vector<std::string> spools;  // --events-spool: files to take the erased users' events out of
-  bool json = false, yes = false, dry_run = false;
+  bool json = false, yes = false, dry_run = false, scrub = false;
 
   Gallery open(bool read_only, bool create = false) const {
     GalleryOptions o;
@@ -46,10 +48,11 @@ nlohmann::json erase_json(const EraseReport& r, const nlohmann::json& spools) {
           {"checkpointed", r.checkpointed}, {"spools", spools}};
 }
 
-// Every --events-spool names a spool file: checked before anything is erased.
-void check_spools(const GalleryCommand& c) {
-  for (const std::string& path : c.spools)
-    if (!std::filesystem::is_regular_file(path)) throw InputError(path + ": no event spool there (--events-spool)");
+// The erased users' events leave the spools named with --events-spool and those the gallery lists.
+nlohmann::json scrub_erased(Gallery& g, const GalleryCommand& c, const EraseReport& r) {
+  return scrub_spools(g, c.spools, [&](int64_t user) {
+    return std::find(r.users.begin(), r.users.end(), user) != r.users.end();
+  });
 }
 
 // "vacuumed" when the database was rewritten without the erased rows (gallery.h).
@@ -133,19 +136,19 @@ void export_command(const GalleryCommand& c) {
 }
 
 void forget(const GalleryCommand& c) {
-  check_spools(c);
+  check_given_spools(c.spools);
   Gallery g = c.open(false);
   const UserId id = g.resolve_user(c.user);
   const EraseReport r = g.forget(id);
   std::printf("forgot user %lld: erased %s; %s %s\n", static_cast<long long>(id), erased_summary(r).c_str(),
               c.gallery.path.c_str(), vacuumed(r));
   note_scrub(r);
-  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  const nlohmann::json spools = scrub_erased(g, c, r);
   if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
 }
 
 void purge(const GalleryCommand& c) {
-  check_spools(c);
+  check_given_spools(c.spools);
   Gallery g = c.open(false);
   if (!c.yes)
     throw UsageError("purge erases all " + std::to_string(g.user_count()) + " users of " + c.gallery.path +
@@ -154,7 +157,7 @@ void purge(const GalleryCommand& c) {
   std::printf("purged %s: erased %zu users, %s; %s\n", c.gallery.path.c_str(), r.users.size(),
               erased_summary(r).c_str(), vacuumed(r));
   note_scrub(r);
-  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  const nlohmann::json spools = scrub_erased(g, c, r);
   if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
 }
 
@@ -179,7 +182,7 @@ void prune(const GalleryCommand& c) {
   const auto unseen = parse_retention(c.unseen_for, "--unseen-for");
   if (unseen.count() <= 0)
     throw UsageError("--unseen-for: " + c.unseen_for + " would erase everyone; to do that, run purge --yes");
-  check_spools(c);
+  check_given_spools(c.spools);
   Gallery g = c.open(c.dry_run);
   const GalleryTime now = GalleryClock::now();
   // "N users not seen since T: 1 2 3"
@@ -197,14 +200,43 @@ void prune(const GalleryCommand& c) {
   const EraseReport r = g.prune_unseen(unseen, now);
   std::printf("pruned %s: erased %s\n", who(r.users).c_str(), erased_summary(r).c_str());
   note_scrub(r);
-  const nlohmann::json spools = scrub_spools(c.spools, r.users);
+  const nlohmann::json spools = scrub_erased(g, c, r);
   if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
+}
+
+// The reid event spools the gallery lists; --scrub takes the events of users the gallery no longer has out
+// of those on this machine (for a spool on this machine that a forget elsewhere could not reach).
+void spools(const GalleryCommand& c) {
+  Gallery g = c.open(!c.scrub);
+  const std::string host = this_host();
+  const std::vector<EventSpoolRecord> listed = g.event_spools();
+  std::printf("%s: %zu event spools\n", c.gallery.path.c_str(), listed.size());
+  nlohmann::json all = nlohmann::json::array();
+  for (const EventSpoolRecord& r : listed) {
+    std::error_code ec;
+    const char* state = r.host != host                                 ? "on another machine"
+                        : std::filesystem::is_regular_file(r.path, ec) ? "here"
+                                                                       : "missing";
+    std::printf("%s:%s  sensor %s  first used %s  last used %s  %s\n", r.host.c_str(), r.path.c_str(),
+                r.sensor.empty() ? "-" : r.sensor.c_str(), format_utc(r.first_used).c_str(),
+                format_utc(r.last_used).c_str(), state);
+    all.push_back({{"host", r.host}, {"path", r.path}, {"sensor", r.sensor}, {"first_used", format_utc(r.first_used)},
+                   {"last_used", format_utc(r.last_used)}, {"state", state}});
+  }
+  nlohmann::json j = {{"gallery", c.gallery.path}, {"spools", all}};
+  if (c.scrub) {
+    std::set<int64_t> users;
+    for (const User& u : g.users()) users.insert(u.id);
+    j["scrubbed"] = scrub_spools(g, {}, [&](int64_t user) { return users.count(user) == 0; });
+  }
+  if (c.json) std::printf("%s\n", json_text(j).c_str());
 }
 
 void add_spool_option(CLI::App& sub, GalleryCommand& c) {
   sub.add_option("--events-spool", c.spools,
-                 "Also take the erased users' undelivered events out of this reid event spool file (repeatable; "
-                 "one a running reid holds is left to it: it withdraws them itself)");
+                 "Also take the erased users' undelivered events out of this reid event spool file (repeatable), "
+                 "besides the spools the gallery lists (gallery spools); one a running reid holds is left to it: "
+                 "it withdraws them itself");
 }
 
 void add(CLI::App& app) {
@@ -274,6 +306,19 @@ void add(CLI::App& app) {
   sub->add_flag("--json", c->json, "End stdout with one JSON object {users, scans, images, masks, events, spools}");
   sub->footer("Example: bodyrec gallery prune --unseen-for 30d");
   sub->callback([c] { prune(*c); });
+
+  sub = gallery->add_subcommand(
+      "spools", "The event spools of reid --events runs that the gallery lists (forget, purge and prune scrub them)");
+  sub->add_flag("--scrub", c->scrub,
+                "Take the undelivered events of users the gallery no longer has out of the listed spools on this "
+                "machine (for an erasure made on another machine)");
+  sub->add_flag("--json", c->json,
+                "End stdout with one JSON object {gallery, spools: [{host, path, sensor, first_used, last_used, state}], "
+                "scrubbed}");
+  sub->footer("A spool is listed by the reid run that used it, under its machine's host name. An erasure scrubs\n"
+              "the listed spools on its own machine; on others, the next reid run with that spool withdraws the\n"
+              "erased users' events, or run gallery spools --scrub there.");
+  sub->callback([c] { spools(*c); });
 }
 
 const bool registered = register_command({"", 90, add});

@@ -16,6 +16,7 @@
 #include "bodyrec/store/postgres.h"
 #include "command.h"
 #include "event_options.h"
+#include "gallery_spools.h"
 #include "reid_output.h"
 #include "stop_signal.h"
 
@@ -55,6 +56,7 @@ struct ReidCommand {
     if (!jsonl.empty()) lines = std::make_unique<JsonlWriter>(jsonl);
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(o, o.gallery.path);
+    list_run_spool(*gallery, events);  // so that gallery forget finds this run's undelivered events
     const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
                                : in.source                 ? in.source->name()
                                                            : input;

@@ -2,13 +2,11 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ctime>
 
 #include "bodyrec/core/error.h"
-#include "bodyrec/events/event_spool.h"
 #include "bodyrec/io/json_numbers.h"
 #include "option_checks.h"
 
@@ -117,23 +115,6 @@ size_t RunEvents::withdraw_erased(const std::function<bool(int64_t user)>& exist
     const std::optional<int64_t> user = event_user(payload);
     return user && !exists(*user);
   });
-}
-
-nlohmann::json scrub_spools(const std::vector<std::string>& spools, const std::vector<int64_t>& erased) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const std::string& path : spools) {
-    const SpoolScrub s = EventSpool::scrub(path, [&](const SpooledEvent& e) {
-      const std::optional<int64_t> user = event_user(e.payload);
-      return user && std::find(erased.begin(), erased.end(), *user) != erased.end();
-    });
-    if (s.in_use)
-      std::printf("events spool %s: in use by a running reid, which withdraws these users' events itself\n",
-                  path.c_str());
-    else
-      std::printf("events spool %s: withdrew %zu undelivered events of these users\n", path.c_str(), s.removed);
-    out.push_back({{"path", path}, {"removed", s.removed}, {"in_use", s.in_use}});
-  }
-  return out;
 }
 
 nlohmann::json RunEvents::finish() {

@@ -55,11 +55,6 @@ struct RunEvents {
 // The gallery user an event payload is about (its integer "user"), or nothing.
 std::optional<int64_t> event_user(const std::string& payload);
 
-// Takes the events of `erased` users out of each closed spool file in `spools` (`gallery forget --events-spool`,
-// EventSpool::scrub) and writes a line per spool on stdout. A spool a running `reid` holds is left to it
-// (it withdraws erased users' events itself). Returns {path, removed, in_use} per spool.
-nlohmann::json scrub_spools(const std::vector<std::string>& spools, const std::vector<int64_t>& erased);
-
 // Checks the options (UsageError, InputError for an unreadable credentials or CA file) and starts the
 // publisher of `kind` ("reid" or "groups").
 RunEvents open_events(const EventCliOptions& options, const std::string& kind);

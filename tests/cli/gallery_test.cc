@@ -124,8 +124,8 @@ TEST(GalleryCli, ShowAndExportGiveTheWallTimeBesideTheSourcesTime) {
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(db,
-                         "ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms; "
-                         "PRAGMA user_version = 2",
+                         "DROP TABLE event_spools; ALTER TABLE events DROP COLUMN logged_ms; "
+                         "ALTER TABLE scans DROP COLUMN stored_ms; PRAGMA user_version = 2",
                          nullptr, nullptr, nullptr),
             SQLITE_OK);
   sqlite3_close(db);
@@ -288,12 +288,12 @@ TEST(GalleryCli, MissingForeignAndNewerGalleriesAreInputErrors) {
   const std::string newer = make_gallery(dir);
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(newer.c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 4", nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 5", nullptr, nullptr, nullptr), SQLITE_OK);
   sqlite3_close(db);
   const RunResult future = run_bodyrec({"gallery", "--gallery", newer, "show", "1"});
   EXPECT_EQ(future.exit_code, 3);
   EXPECT_EQ(future.err, "bodyrec: error: " + newer +
-                            ": gallery schema version 4 is newer than this bodyrec reads (up to 3); use a newer bodyrec\n");
+                            ": gallery schema version 5 is newer than this bodyrec reads (up to 4); use a newer bodyrec\n");
 }
 
 }  // namespace

@@ -162,7 +162,11 @@ TEST(ReidLiveCli, ASpooledEventOfAForgottenUserIsNeverPublished) {
   const RunResult first = run_bodyrec(run);
   ASSERT_EQ(first.exit_code, 0) << first.err;
   ASSERT_EQ(spooled_users(spool).count(1), 1u);
+  // Out of forget's reach (it scrubs the spools the gallery lists: ReidLiveCli.GalleryForgetFindsTheSpoolsReidRunsList),
+  // as a spool on another machine is.
+  fs::rename(spool, dir / "away.spool");
   ASSERT_EQ(run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1"}).exit_code, 0);
+  fs::rename(dir / "away.spool", spool);
   const RunResult second = run_bodyrec(run);
   ASSERT_EQ(second.exit_code, 0) << second.err;
   const auto j = last_json_line(second.out);
@@ -196,10 +200,77 @@ TEST(ReidLiveCli, GalleryForgetScrubsAClosedSpool) {
   const auto j = last_json_line(forget.out);
   ASSERT_EQ(j["spools"].size(), 1u);
   EXPECT_GE(j["spools"][0]["removed"].get<int>(), 1);
-  EXPECT_FALSE(j["spools"][0]["in_use"].get<bool>());
+  EXPECT_EQ(j["spools"][0]["status"], "scrubbed");
   const std::set<int> after = spooled_users(spool);
   EXPECT_EQ(after.count(1), 0u);
   EXPECT_EQ(after.size(), before.size() - 1);
+}
+
+// A reid run lists its spool in the gallery; gallery forget then scrubs it without being told, says where a
+// listed spool is on another machine, and takes a spool whose file is gone off the list. `gallery spools
+// --scrub` takes out the events of users the gallery no longer has (an erasure made elsewhere).
+TEST(ReidLiveCli, GalleryForgetFindsTheSpoolsReidRunsList) {
+  TempDir dir;
+  const fs::path gallery = dir / "g.db", spool = dir / "events.spool";
+  const RunResult first =
+      run_bodyrec({"reid", short_walk().string(), "--gallery", gallery.string(), "-q", "--sensor-id", "door", "--events",
+                   "mqtt://127.0.0.1:1/site", "--events-spool", spool.string(), "--events-wait", "0"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const std::set<int> before = spooled_users(spool);
+  ASSERT_EQ(before.count(1), 1u);
+  ASSERT_GE(before.size(), 2u);
+  fs::copy_file(spool, dir / "copy.spool");
+  RunResult r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = last_json_line(r.out);
+  ASSERT_EQ(j["spools"].size(), 1u) << j;
+  EXPECT_EQ(j["spools"][0]["path"], fs::canonical(spool).string());
+  EXPECT_EQ(j["spools"][0]["sensor"], "door");
+  EXPECT_EQ(j["spools"][0]["state"], "here");
+  const std::string host = j["spools"][0]["host"];
+
+  // Another machine's spool, as its reid run would have listed it.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(gallery.c_str(), &db), SQLITE_OK);
+  const std::string insert = "INSERT INTO event_spools(host, path, sensor, first_used_ms, last_used_ms) VALUES ('not-" +
+                             host + "', '/var/lib/bodyrec/hall.spool', 'hall', 0, 0)";
+  ASSERT_EQ(sqlite3_exec(db, insert.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "events spool " + fs::canonical(spool).string() + ": withdrew ")) << r.out;
+  EXPECT_TRUE(contains(r.out, "events spool /var/lib/bodyrec/hall.spool on not-" + host + ": not on this machine"))
+      << r.out;
+  j = last_json_line(r.out);
+  ASSERT_EQ(j["spools"].size(), 2u) << j;
+  EXPECT_EQ(j["spools"][0]["status"], "elsewhere");
+  EXPECT_EQ(j["spools"][1]["status"], "scrubbed");
+  EXPECT_GE(j["spools"][1]["removed"].get<int>(), 1);
+  EXPECT_EQ(spooled_users(spool).count(1), 0u);
+  EXPECT_EQ(spooled_users(spool).size(), before.size() - 1);
+
+  // The spool as it was before the erasure (say, restored from a backup): --scrub takes user 1 out again.
+  fs::copy_file(dir / "copy.spool", spool, fs::copy_options::overwrite_existing);
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools", "--scrub", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = last_json_line(r.out);
+  ASSERT_EQ(j["scrubbed"].size(), 2u) << j;
+  EXPECT_EQ(j["scrubbed"][1]["status"], "scrubbed");
+  EXPECT_EQ(spooled_users(spool).count(1), 0u);
+  EXPECT_EQ(spooled_users(spool).size(), before.size() - 1);
+
+  // A listed spool whose file is gone: reported and taken off the list.
+  fs::remove(spool);
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "2", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "events spool " + fs::weakly_canonical(spool).string() +
+                                  ": no longer there; taken off the gallery's list")) << r.out;
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, ": 1 event spools\n")) << r.out;
+  EXPECT_TRUE(contains(r.out, "not-" + host + ":/var/lib/bodyrec/hall.spool  sensor hall")) << r.out;
+  EXPECT_TRUE(contains(r.out, "on another machine")) << r.out;
 }
 
 // Plain-camera options given for an RGB-D recording would be ignored: each is a usage error naming it.

@@ -166,12 +166,12 @@ TEST(ReportCommand, BadInputsGiveOneLineErrors) {
   write_gallery(dir / "newer.db");
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open((dir / "newer.db").c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 4", nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "PRAGMA user_version = 5", nullptr, nullptr, nullptr), SQLITE_OK);
   sqlite3_close(db);
   r = run_bodyrec({"report", (dir / "run.jsonl").string(), "--gallery", (dir / "newer.db").string(), "--out",
                    (dir / "r.html").string()});
   EXPECT_EQ(r.exit_code, 3);
-  EXPECT_TRUE(contains(r.err, "newer.db: gallery schema version 4 is newer")) << r.err;
+  EXPECT_TRUE(contains(r.err, "newer.db: gallery schema version 5 is newer")) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "r.html"));
 
   write_magenta_video(dir / "short.avi", 3);

@@ -114,7 +114,7 @@ TEST(SitesCli, GalleryInitAndErrorsNameTheDatabase) {
   expect_one_line_error(r, 3, uri + ": empty database, not a bodyrec gallery");
   r = run_bodyrec({"gallery", "--gallery", uri, "init"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out, uri + ": gallery schema version 3, 0 users\n");
+  EXPECT_EQ(r.out, uri + ": gallery schema version 4, 0 users\n");
   EXPECT_EQ(run_bodyrec({"gallery", "--gallery", uri, "list"}).exit_code, 0);
   const std::string missing = pg->uri("missing_db");
   expect_one_line_error(run_bodyrec({"gallery", "--gallery", missing, "list"}), 3, missing + ": cannot connect: ");

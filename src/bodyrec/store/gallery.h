@@ -62,8 +62,9 @@ struct GalleryOptions {
 
 // The schema version this build writes (SQLite: PRAGMA user_version; PostgreSQL: bodyrec_gallery).
 // Older galleries are migrated on open. 2: events record their sensor. 3: events and scans record the
-// wall time at which the gallery wrote them (Event::logged, StoredScan::stored).
-constexpr int kGallerySchemaVersion = 3;
+// wall time at which the gallery wrote them (Event::logged, StoredScan::stored). 4: the event spools of reid
+// runs (EventSpoolRecord).
+constexpr int kGallerySchemaVersion = 4;
 
 namespace store {
 class GalleryBackend;
@@ -76,7 +77,7 @@ class Gallery : public GalleryCache {
   // Opens (or creates) the gallery at `path` (a file, or a postgresql:// URI) and loads the feature cache.
   // Throws InputError naming the file when it is missing (without create), not an SQLite database,
   // another application's database, or from a newer schema ("... schema version N is newer than this
-  // bodyrec reads (up to 3)"); for a URI, also when the server cannot be reached or the database does
+  // bodyrec reads (up to 4)"); for a URI, also when the server cannot be reached or the database does
   // not exist; UsageError for a URI that holds a password. Older schemas are upgraded in one transaction
   // (not in read_only mode: InputError).
   Gallery(const std::string& path, const GalleryOptions& options = {});
@@ -105,6 +106,11 @@ class Gallery : public GalleryCache {
   UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
                const std::string& source = "");
   void set_label(UserId user, const std::string& label);
+  // Lists a reid run's event spool, or moves a listed one's last_used (and sensor) to this run's; first_used
+  // is kept. Not an erasure's business: it changes no user, scan or event.
+  void note_event_spool(const EventSpoolRecord& spool);
+  // Takes a spool off the list (the file is gone); false when it was not listed.
+  bool drop_event_spool(const std::string& host, const std::string& path);
   // From now on put_scan keeps features only, as with GalleryOptions::store_images = false.
   void keep_features_only() { options_.store_images = false; }
 
@@ -157,6 +163,7 @@ class Gallery : public GalleryCache {
   std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
   int user_count();
   std::vector<UserId> users_unseen_since(GalleryTime since);  // last_seen before `since`, by id
+  std::vector<EventSpoolRecord> event_spools();  // by host, then path
   int64_t scan_count();         // stored scans
   int64_t scans_with_images();  // stored scans that hold body pixels (an image)
 

@@ -66,6 +66,21 @@ std::vector<UserId> Gallery::users_unseen_since(GalleryTime since) {
   return ids;
 }
 
+std::vector<EventSpoolRecord> Gallery::event_spools() {
+  sql::Statement s(*db_, "SELECT host, path, sensor, first_used_ms, last_used_ms FROM event_spools ORDER BY host, path");
+  std::vector<EventSpoolRecord> spools;
+  while (s.step()) {
+    EventSpoolRecord r;
+    r.host = s.column_text(0);
+    r.path = s.column_text(1);
+    r.sensor = s.column_text(2);
+    r.first_used = from_unix_ms(s.column_int(3));
+    r.last_used = from_unix_ms(s.column_int(4));
+    spools.push_back(std::move(r));
+  }
+  return spools;
+}
+
 int64_t Gallery::scan_count() { return db_->query_int("SELECT count(*) FROM scans"); }
 
 int64_t Gallery::scans_with_images() {

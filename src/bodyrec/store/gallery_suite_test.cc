@@ -18,7 +18,7 @@ TEST_P(GallerySuite, NewerSchemaIsRefusedNamingBothVersions) {
   { Gallery g(path, creating()); }
   set_schema_version(path, 7);
   EXPECT_EQ(input_error([&] { Gallery g(path); }),
-            path + ": gallery schema version 7 is newer than this bodyrec reads (up to 3); use a newer bodyrec");
+            path + ": gallery schema version 7 is newer than this bodyrec reads (up to 4); use a newer bodyrec");
 }
 
 TEST_P(GallerySuite, EmptyGalleryNeedsCreateAndIsThenInitialised) {
@@ -47,13 +47,13 @@ TEST_P(GallerySuite, SchemaOneIsUpgradedKeepingEveryRow) {
     Gallery g(path, creating());
     u = g.enrol(make_scan(View::F, 0.5, 1), "alice", 3, "rec1");
   }
-  raw_sql(path, "ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms; "
-                "ALTER TABLE events DROP COLUMN sensor; DROP TABLE gallery_state");
+  raw_sql(path, "DROP TABLE event_spools; ALTER TABLE events DROP COLUMN logged_ms; "
+                "ALTER TABLE scans DROP COLUMN stored_ms; ALTER TABLE events DROP COLUMN sensor; DROP TABLE gallery_state");
   set_schema_version(path, 1);
   GalleryOptions read_only;
   read_only.read_only = true;
   EXPECT_TRUE(contains(input_error([&] { Gallery g(path, read_only); }),
-                       "gallery schema version 1 needs an upgrade to 3; open it once for writing"));
+                       "gallery schema version 1 needs an upgrade to 4; open it once for writing"));
   GalleryOptions o;
   o.sensor = "door";
   Gallery g(path, o);
@@ -67,7 +67,36 @@ TEST_P(GallerySuite, SchemaOneIsUpgradedKeepingEveryRow) {
   e.kind = EventKind::kLeft;
   g.log_event(e);
   EXPECT_EQ(g.events(u)[1].sensor, "door");
+  EXPECT_TRUE(g.event_spools().empty());
   { Gallery again(path, read_only); }  // now current
+}
+
+// reid runs list their event spools; a second run with the same spool moves last_used, not first_used.
+TEST_P(GallerySuite, EventSpoolsAreListedOncePerHostAndPath) {
+  const std::string path = fresh();
+  Gallery g(path, creating());
+  EventSpoolRecord a{"robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(1000), from_unix_ms(1000)};
+  g.note_event_spool(a);
+  g.note_event_spool({"robot", "/tmp/hall.spool", "hall", from_unix_ms(2000), from_unix_ms(2000)});
+  g.note_event_spool({"lab-pc", a.path, "door", from_unix_ms(3000), from_unix_ms(3000)});  // another machine's file
+  a.sensor = "door-2";
+  a.first_used = a.last_used = from_unix_ms(5000);
+  g.note_event_spool(a);
+  std::vector<EventSpoolRecord> spools = g.event_spools();
+  ASSERT_EQ(spools.size(), 3u);
+  EXPECT_EQ(spools[0].host, "lab-pc");
+  EXPECT_EQ(spools[1].path, "/tmp/hall.spool");
+  EXPECT_EQ(spools[2].path, a.path);
+  EXPECT_EQ(spools[2].sensor, "door-2");
+  EXPECT_EQ(to_unix_ms(spools[2].first_used), 1000);
+  EXPECT_EQ(to_unix_ms(spools[2].last_used), 5000);
+  EXPECT_TRUE(g.drop_event_spool("robot", "/tmp/hall.spool"));
+  EXPECT_FALSE(g.drop_event_spool("robot", "/tmp/hall.spool"));
+  EXPECT_EQ(g.event_spools().size(), 2u);
+  // Erasing users leaves the list alone: it names files, not people.
+  g.enrol(make_scan(View::F, 0.5, 1));
+  g.purge();
+  EXPECT_EQ(g.event_spools().size(), 2u);
 }
 
 TEST_P(GallerySuite, EventsRecordTheirSensor) {

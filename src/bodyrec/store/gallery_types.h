@@ -91,6 +91,15 @@ struct Event {
   std::optional<GalleryTime> logged;
 };
 
+// A file where a reid run keeps events it has not yet delivered over MQTT (reid --events). The gallery
+// lists these so that an erasure can take the erased users' events out of them too.
+struct EventSpoolRecord {
+  std::string host;    // the machine the file is on (its host name)
+  std::string path;    // absolute on that machine
+  std::string sensor;  // the run's --sensor-id
+  GalleryTime first_used = GalleryClock::now(), last_used = GalleryClock::now();
+};
+
 // What forget/purge/prune erased.
 struct EraseReport {
   std::vector<UserId> users;

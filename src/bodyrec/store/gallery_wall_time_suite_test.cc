@@ -96,13 +96,13 @@ TEST_P(GallerySuite, SchemaTwoIsUpgradedKeepingEveryRowWithoutWallTimes) {
     e.score = 0.25;
     g.log_event(e);
   }
-  // Schema 3's columns dropped, version 2: the layout and rows of a gallery of the previous version.
-  raw_sql(path, "ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms");
+  // Schema 3's columns and schema 4's table dropped, version 2: the layout and rows of a gallery of version 2.
+  raw_sql(path, "DROP TABLE event_spools; ALTER TABLE events DROP COLUMN logged_ms; ALTER TABLE scans DROP COLUMN stored_ms");
   set_schema_version(path, 2);
   GalleryOptions read_only;
   read_only.read_only = true;
   EXPECT_TRUE(contains(input_error([&] { Gallery g(path, read_only); }),
-                       "gallery schema version 2 needs an upgrade to 3; open it once for writing"));
+                       "gallery schema version 2 needs an upgrade to 4; open it once for writing"));
 
   Gallery g(path);
   EXPECT_EQ(g.user(u)->label, "alice");

@@ -68,7 +68,20 @@ ALTER TABLE events ADD COLUMN logged_ms {int};
 ALTER TABLE scans ADD COLUMN stored_ms {int};
 )sql";
 
-constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2, kV3};
+// Version 3 -> 4: the event spools of reid runs that publish over MQTT (reid --events), so that erasing
+// users also takes their undelivered events out of those files (gallery forget/purge/prune). `host` is
+// the machine the file is on; `path` is absolute there.
+constexpr const char* kV4 = R"sql(
+CREATE TABLE event_spools(
+  host TEXT NOT NULL,
+  path TEXT NOT NULL,
+  sensor TEXT NOT NULL DEFAULT '',
+  first_used_ms {int} NOT NULL,
+  last_used_ms {int} NOT NULL,
+  PRIMARY KEY (host, path));
+)sql";
+
+constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2, kV3, kV4};
 
 }  // namespace
 
