@@ -50,7 +50,9 @@ void add_detector_options(CLI::App& sub, DetectorOptions& o, DetectorUse use, co
                   "'thesis' (HOG: hit -0.2, stride 12, padding 16, scale 1.05, group 2, whole frame at original "
                   "size) or 'opencv' (HOG as OpenCV's peopledetect sample: hit 0, stride 8, no padding, group 2)",
                   "auto");
-  sub.add_option(model_flag, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
+  // --detector-model is the one name every command takes (reid's --model is its matcher's).
+  const std::string names = model_flag == "--detector-model" ? model_flag : model_flag + ",--detector-model";
+  sub.add_option(names, o.model_file, "Use a dlib fHOG detector from FILE.svm instead of HOG");
   sub.add_option("--fhog-upsample", o.fhog_upsample, "fHOG: image scale factor before detection");
   sub.add_option("--fhog-threshold", o.fhog_threshold, "fHOG: added to the model's threshold");
   const std::string p = " (default: the preset's value)";

@@ -64,7 +64,8 @@ struct DetectorOptions {
               *o_local_height_margin = nullptr;
 };
 
-// `model_flag` names the fHOG model option (`--model`; a command whose --model is something else renames it).
+// `model_flag` names the fHOG model option: `--model`, also taken as `--detector-model` (the name every command
+// shares); a command whose --model is something else gives "--detector-model" alone.
 void add_detector_options(CLI::App& sub, DetectorOptions& options, DetectorUse use,
                           const std::string& model_flag = "--model");
 

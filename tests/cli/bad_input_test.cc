@@ -175,6 +175,19 @@ TEST(BadInput, APngCorruptInTheMiddleIsAOneLineError) {
   expect_frames_written(dir / "d.jsonl", 1);
 }
 
+// The fHOG model file has one name in every command (--detector-model; --model where it means nothing else).
+TEST(BadInput, AMissingDetectorModelIsNamedByEveryCommand) {
+  TempDir dir;
+  cv::imwrite((dir / "a.png").string(), noise_image());
+  const std::string model = (dir / "none.svm").string(), image = (dir / "a.png").string();
+  for (const char* command : {"detect", "track", "groups", "landmark"})
+    for (const char* flag : {"--detector-model", "--model"})
+      expect_one_line_error(run_bodyrec({command, image, flag, model}), 3, "cannot read detector model " + model);
+  expect_one_line_error(run_bodyrec({"reid", image, "--detector", "hog", "--detector-model", model, "--gallery",
+                                     (dir / "g.db").string()}),
+                        3, "cannot read detector model " + model);
+}
+
 TEST(BadInput, ImageWhereAVideoOrRecordingIsExpected) {
   TempDir dir;
   cv::imwrite((dir / "frame.png").string(), noise_image());
