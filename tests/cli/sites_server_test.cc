@@ -272,6 +272,48 @@ TEST(SitesCli, WithTheBrokerDownEventsWaitInTheSpoolForTheNextRun) {
       << r.err;
 }
 
+// A sensor role with the grants of docs/postgresql-roles.sql lists its run's event spool in the gallery, and
+// the admin's forget scrubs it. Without the schema-4 grant (a site that upgraded and has not run it yet) the
+// run says so on stderr and goes on.
+TEST(SitesCli, ASensorListsItsEventSpoolOrWarnsWithoutTheGrant) {
+  BODYREC_REQUIRE_POSTGRES(pg);
+  TempDir dir;
+  const std::string uri = pg->create_database("spools");
+  const std::string db = uri.substr(std::string("postgresql:///").size(), uri.find('?') - std::string("postgresql:///").size());
+  const std::string roles = read_text(source_dir() + "/docs/postgresql-roles.sql");
+  const size_t part2 = roles.find("-- Part 2");
+  pg->exec(db, roles.substr(0, part2));
+  const std::string admin = pg->uri(db, "bodyrec_admin"), sensor = pg->uri(db, "bodyrec_sensor");
+  ASSERT_EQ(run_bodyrec({"gallery", "--gallery", admin, "init"}).exit_code, 0);
+  pg->exec(db, roles.substr(part2));
+  pg->exec(db, "REVOKE ALL ON event_spools FROM bodyrec_sensor");
+  const std::string spool = (dir / "door.spool").string();
+  const std::vector<std::string> run = {"reid", reenter().string(), "--gallery", sensor, "--sensor-id", "door", "-q",
+                                        "--events", "mqtt://127.0.0.1:1/site", "--events-spool", spool,
+                                        "--events-wait", "0"};
+  RunResult r = run_bodyrec(run);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "bodyrec: warning: " + sensor + " does not list the event spool " + spool)) << r.err;
+  EXPECT_TRUE(contains(r.err, "permission denied")) << r.err;
+  r = run_bodyrec({"gallery", "--gallery", admin, "spools"});
+  EXPECT_TRUE(contains(r.out, ": 0 event spools")) << r.out;
+
+  pg->exec(db, "GRANT SELECT, INSERT, UPDATE, DELETE ON event_spools TO bodyrec_sensor");
+  r = run_bodyrec(run);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(contains(r.err, "warning")) << r.err;
+  r = run_bodyrec({"gallery", "--gallery", admin, "spools", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = last_json_line(r.out);
+  ASSERT_EQ(j["spools"].size(), 1u) << j;
+  EXPECT_EQ(j["spools"][0]["path"], spool);
+  EXPECT_EQ(j["spools"][0]["sensor"], "door");
+  r = run_bodyrec({"gallery", "--gallery", admin, "forget", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "events spool " + spool + ": withdrew ")) << r.out;
+  EXPECT_FALSE(contains(read_text(spool), "\\\"user\\\":1,")) << "user 1's events are still in the spool";
+}
+
 TEST(SitesCli, EventOptionErrorsAreUsageErrorsWithoutSecrets) {
   TempDir dir;
   RunResult r = run_bodyrec({"reid", reenter().string(), "--gallery", (dir / "g.db").string(), "--events",
