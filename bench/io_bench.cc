@@ -2,9 +2,12 @@
 // CRC computed, a JPEG's end marker looked for) against the whole read and decode, on a synthetic
 // recording's 960x540 colour frame (PNG) and 512x424 depth frame (16-bit PNG), and the colour frame as JPEG.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -15,20 +18,33 @@ namespace {
 
 enum class Frame { kColourPng, kDepthPng, kColourJpeg };
 
-// A file written once per process: frame 60 of a 3-person walk.
-std::string frame_file(Frame which) {
-  static const bodyrec::RgbdFrame frame = [] {
+// The three files, written once per process into a folder of its own (removed at exit): frame 60 of a
+// 3-person walk.
+struct FrameFiles {
+  std::string dir;
+  FrameFiles() {
+    char name[] = "/tmp/bodyrec-io-bench-XXXXXX";
+    if (!::mkdtemp(name)) throw std::runtime_error("io_bench: cannot create a temporary folder");
+    dir = name;
     bodyrec::SynthOptions o;
     o.people = 3;
     o.frames = 120;
     o.seed = 1;
-    return bodyrec::Synthesizer(o).render(60);
-  }();
-  const char* names[] = {"/tmp/bodyrec-io-bench-colour.png", "/tmp/bodyrec-io-bench-depth.png",
-                         "/tmp/bodyrec-io-bench-colour.jpg"};
-  const std::string path = names[static_cast<int>(which)];
-  cv::imwrite(path, which == Frame::kDepthPng ? frame.depth : frame.color);
-  return path;
+    const bodyrec::RgbdFrame frame = bodyrec::Synthesizer(o).render(60);
+    cv::imwrite(dir + "/colour.png", frame.color);
+    cv::imwrite(dir + "/depth.png", frame.depth);
+    cv::imwrite(dir + "/colour.jpg", frame.color);
+  }
+  ~FrameFiles() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
+
+std::string frame_file(Frame which) {
+  static const FrameFiles files;
+  const char* names[] = {"/colour.png", "/depth.png", "/colour.jpg"};
+  return files.dir + names[static_cast<int>(which)];
 }
 
 void BM_CheckBeforeDecoding(benchmark::State& state, Frame which) {

@@ -1,5 +1,6 @@
 // `bodyrec gallery`: inspect and manage the persistent re-identification gallery (issue 6/7): list users,
-// show one, export one (right of access), forget one, purge all, prune by retention time; the same on an
+// show one, export one (right of access), forget one, purge all, prune by retention time (each erasure also
+// scrubs the reid event spools the gallery lists: gallery_spools.h), list those spools; the same on an
 // SQLite file and on a PostgreSQL database (issue 47). Only `init` creates a gallery: elsewhere a missing
 // file or an empty database is an input error.
 #include <algorithm>
@@ -27,6 +28,7 @@ struct GalleryCommand {
   GalleryCliOptions gallery;
   std::string user, dir, unseen_for, label;
   std::vector<std::string> spools;  // --events-spool: files to take the erased users' events out of
+  std::vector<std::string> drop;    // gallery spools --drop: paths to take off the list
   bool json = false, yes = false, dry_run = false, scrub = false;
 
   Gallery open(bool read_only, bool create = false) const {
@@ -49,10 +51,25 @@ nlohmann::json erase_json(const EraseReport& r, const nlohmann::json& spools) {
 }
 
 // The erased users' events leave the spools named with --events-spool and those the gallery lists.
-nlohmann::json scrub_erased(Gallery& g, const GalleryCommand& c, const EraseReport& r) {
-  return scrub_spools(g, c.spools, [&](int64_t user) {
-    return std::find(r.users.begin(), r.users.end(), user) != r.users.end();
-  });
+SpoolScrubs scrub_erased(Gallery& g, const GalleryCommand& c, const EraseReport& r) {
+  return scrub_spools(
+      g, c.spools, [&](int64_t user) { return std::find(r.users.begin(), r.users.end(), user) != r.users.end(); },
+      stdout);
+}
+
+// After the command's own output: spools that could not be scrubbed make the erasure's exit code 4 (the
+// users are erased; their events may still be in those files).
+void check_scrubs(const SpoolScrubs& s) {
+  if (s.failed > 0)
+    throw ProcessingError(std::to_string(s.failed) + " event spool" + (s.failed == 1 ? "" : "s") +
+                          " not scrubbed (see above); the erased users' events may still be in " +
+                          (s.failed == 1 ? "it" : "them"));
+}
+
+// The erasure's JSON, then check_scrubs.
+void finish_erasure(const GalleryCommand& c, const EraseReport& r, const SpoolScrubs& s) {
+  if (c.json) std::printf("%s\n", json_text(erase_json(r, s.spools)).c_str());
+  check_scrubs(s);
 }
 
 // "vacuumed" when the database was rewritten without the erased rows (gallery.h).
@@ -143,8 +160,7 @@ void forget(const GalleryCommand& c) {
   std::printf("forgot user %lld: erased %s; %s %s\n", static_cast<long long>(id), erased_summary(r).c_str(),
               c.gallery.path.c_str(), vacuumed(r));
   note_scrub(r);
-  const nlohmann::json spools = scrub_erased(g, c, r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
+  finish_erasure(c, r, scrub_erased(g, c, r));
 }
 
 void purge(const GalleryCommand& c) {
@@ -157,8 +173,7 @@ void purge(const GalleryCommand& c) {
   std::printf("purged %s: erased %zu users, %s; %s\n", c.gallery.path.c_str(), r.users.size(),
               erased_summary(r).c_str(), vacuumed(r));
   note_scrub(r);
-  const nlohmann::json spools = scrub_erased(g, c, r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
+  finish_erasure(c, r, scrub_erased(g, c, r));
 }
 
 void label(const GalleryCommand& c) {
@@ -200,43 +215,51 @@ void prune(const GalleryCommand& c) {
   const EraseReport r = g.prune_unseen(unseen, now);
   std::printf("pruned %s: erased %s\n", who(r.users).c_str(), erased_summary(r).c_str());
   note_scrub(r);
-  const nlohmann::json spools = scrub_erased(g, c, r);
-  if (c.json) std::printf("%s\n", json_text(erase_json(r, spools)).c_str());
+  finish_erasure(c, r, scrub_erased(g, c, r));
 }
 
-// The reid event spools the gallery lists; --scrub takes the events of users the gallery no longer has out
-// of those on this machine (for a spool on this machine that a forget elsewhere could not reach).
+// The reid event spools the gallery lists; --drop takes paths off the list, --scrub takes the events of users
+// the gallery no longer has out of those on this machine (for an erasure made on another machine).
 void spools(const GalleryCommand& c) {
-  Gallery g = c.open(!c.scrub);
-  const std::string host = this_host();
+  Gallery g = c.open(!c.scrub && c.drop.empty());
+  nlohmann::json j = {{"gallery", c.gallery.path}};
+  if (!c.drop.empty()) {
+    int dropped = 0;
+    for (const EventSpoolRecord& r : g.event_spools())
+      if (std::find(c.drop.begin(), c.drop.end(), r.path) != c.drop.end() && g.drop_event_spool(r.machine, r.path)) {
+        std::printf("took %s on %s off the list (the file is left as it is)\n", r.path.c_str(), r.host.c_str());
+        ++dropped;
+      }
+    j["dropped"] = dropped;
+  }
   const std::vector<EventSpoolRecord> listed = g.event_spools();
   std::printf("%s: %zu event spools\n", c.gallery.path.c_str(), listed.size());
   nlohmann::json all = nlohmann::json::array();
   for (const EventSpoolRecord& r : listed) {
-    std::error_code ec;
-    const char* state = r.host != host                                 ? "on another machine"
-                        : std::filesystem::is_regular_file(r.path, ec) ? "here"
-                                                                       : "missing";
+    const char* place = spool_place_name(spool_place(r));
     std::printf("%s:%s  sensor %s  first used %s  last used %s  %s\n", r.host.c_str(), r.path.c_str(),
                 r.sensor.empty() ? "-" : r.sensor.c_str(), format_utc(r.first_used).c_str(),
-                format_utc(r.last_used).c_str(), state);
-    all.push_back({{"host", r.host}, {"path", r.path}, {"sensor", r.sensor}, {"first_used", format_utc(r.first_used)},
-                   {"last_used", format_utc(r.last_used)}, {"state", state}});
+                format_utc(r.last_used).c_str(), place);
+    all.push_back({{"machine", r.machine}, {"host", r.host}, {"path", r.path}, {"sensor", r.sensor},
+                   {"first_used", format_utc(r.first_used)}, {"last_used", format_utc(r.last_used)}, {"place", place}});
   }
-  nlohmann::json j = {{"gallery", c.gallery.path}, {"spools", all}};
+  j["spools"] = all;
+  SpoolScrubs scrubs;
   if (c.scrub) {
     std::set<int64_t> users;
     for (const User& u : g.users()) users.insert(u.id);
-    j["scrubbed"] = scrub_spools(g, {}, [&](int64_t user) { return users.count(user) == 0; });
+    scrubs = scrub_spools(g, {}, [&](int64_t user) { return users.count(user) == 0; }, stdout);
+    j["scrub"] = scrubs.spools;
   }
   if (c.json) std::printf("%s\n", json_text(j).c_str());
+  check_scrubs(scrubs);
 }
 
 void add_spool_option(CLI::App& sub, GalleryCommand& c) {
   sub.add_option("--events-spool", c.spools,
                  "Also take the erased users' undelivered events out of this reid event spool file (repeatable), "
                  "besides the spools the gallery lists (gallery spools); one a running reid holds is left to it: "
-                 "it withdraws them itself");
+                 "it withdraws them itself. A spool that cannot be scrubbed: exit 4, after the erasure and its output");
 }
 
 void add(CLI::App& app) {
@@ -253,7 +276,8 @@ void add(CLI::App& app) {
       "          bodyrec gallery export 3 user3/\n"
       "          bodyrec gallery label 3 alice\n"
       "          bodyrec gallery forget alice\n"
-      "          bodyrec gallery prune --unseen-for 30d");
+      "          bodyrec gallery prune --unseen-for 30d\n"
+      "          bodyrec gallery spools");
 
   CLI::App* sub = gallery->add_subcommand(
       "init", "Create the gallery: a new SQLite file, or the tables in an empty PostgreSQL database (docs/postgresql.md)");
@@ -312,12 +336,17 @@ void add(CLI::App& app) {
   sub->add_flag("--scrub", c->scrub,
                 "Take the undelivered events of users the gallery no longer has out of the listed spools on this "
                 "machine (for an erasure made on another machine)");
+  sub->add_option("--drop", c->drop,
+                  "Take this spool path off the list, on every machine (repeatable; the file is left as it is): for "
+                  "a spool on a machine that is gone");
   sub->add_flag("--json", c->json,
-                "End stdout with one JSON object {gallery, spools: [{host, path, sensor, first_used, last_used, state}], "
-                "scrubbed}");
-  sub->footer("A spool is listed by the reid run that used it, under its machine's host name. An erasure scrubs\n"
-              "the listed spools on its own machine; on others, the next reid run with that spool withdraws the\n"
-              "erased users' events, or run gallery spools --scrub there.");
+                "End stdout with one JSON object {gallery, spools: [{machine, host, path, sensor, first_used, "
+                "last_used, place}], scrub, dropped}");
+  sub->footer("A spool is listed by the reid --events run that used it, under its machine (/etc/machine-id) and\n"
+              "host name; place is here, missing, unreachable (cannot be looked at from here) or elsewhere (another\n"
+              "machine). An erasure scrubs the listed spools on its own machine; on others, the next reid run with\n"
+              "that spool withdraws the erased users' events, or run gallery spools --scrub there.\n"
+              "Exit 4 when a spool could not be scrubbed (after everything else is done and printed).");
   sub->callback([c] { spools(*c); });
 }
 

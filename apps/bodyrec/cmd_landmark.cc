@@ -44,10 +44,11 @@ struct LandmarkCommand {
     if (!outputs.mot.empty() && !track) throw UsageError("landmark writes MOT output only with --track (ids)");
     if (track) tracking.check();  // before the model loads and the source opens
     if (detector_choice == "hog" && detector_option->count() > 0 && !detector.model_file.empty())
-      throw UsageError("--detector hog and --model " + detector.model_file + " name two detectors: give one");
+      throw UsageError("--detector hog and --model/--detector-model " + detector.model_file +
+                       " name two detectors: give one");
     if (detector_choice != "hog") {
       if (!detector.model_file.empty() && detector.model_file != detector_choice)
-        throw UsageError("give the fHOG model with either --detector or --model, not both");
+        throw UsageError("give the fHOG model with either --detector or --model/--detector-model, not both");
       detector.model_file = detector_choice;
     }
     BodyShapeModel model(shape_model_path(shape));

@@ -57,6 +57,20 @@ struct ReidCommand {
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(o, o.gallery.path);
     list_run_spool(*gallery, events);  // so that gallery forget finds this run's undelivered events
+    // What --prune-unseen-for erased leaves the other spools on this machine too (this run's own is
+    // withdrawn below); a line on stderr for each that lost events or could not be scrubbed.
+    if (!options.prune_unseen_for.empty()) {
+      std::set<int64_t> users;
+      for (const User& u : gallery->users()) users.insert(u.id);
+      const SpoolScrubs pruned = scrub_spools(*gallery, {}, [&](int64_t user) { return users.count(user) == 0; }, nullptr);
+      for (const nlohmann::json& spool : pruned.spools)
+        if (spool["status"] == "error")
+          std::fprintf(stderr, "bodyrec: event spool %s not scrubbed: %s\n", spool["path"].get<std::string>().c_str(),
+                       spool["error"].get<std::string>().c_str());
+        else if (spool["removed"].get<size_t>() > 0)
+          std::fprintf(stderr, "bodyrec: withdrew %zu events of pruned users from the event spool %s\n",
+                       spool["removed"].get<size_t>(), spool["path"].get<std::string>().c_str());
+    }
     const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
                                : in.source                 ? in.source->name()
                                                            : input;
@@ -102,6 +116,9 @@ struct ReidCommand {
       for (auto u = published.begin(); u != published.end();) u = exists(*u) ? std::next(u) : published.erase(u);
       if (published.size() < before) events.withdraw_erased(exists);
     });
+    // An erasure while the last frames were decided: withdrawn before the publisher's final wait.
+    store.refresh();
+    events.withdraw_erased(exists);
     const nlohmann::json delivery = events.finish();
     const int frames = stats.frames;
     const double p50 = percentile(stats.latency_ms, 50), p95 = percentile(stats.latency_ms, 95);

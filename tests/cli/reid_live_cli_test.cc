@@ -2,6 +2,7 @@
 // counted when processing falls behind), SIGINT/SIGTERM in the middle of a run, `gallery forget` from another
 // process during a run, --sensor without a device, a video, and a recording's colour alone.
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -177,6 +178,17 @@ TEST(ReidLiveCli, ASpooledEventOfAForgottenUserIsNeverPublished) {
   EXPECT_EQ(waiting.count(1), 0u);
 }
 
+// One SQL statement on an SQLite gallery, as another program (or another machine's bodyrec) would write it.
+void sql(const fs::path& gallery, const std::string& statement) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(gallery.c_str(), &db), SQLITE_OK);
+  char* message = nullptr;
+  const int rc = sqlite3_exec(db, statement.c_str(), nullptr, nullptr, &message);
+  EXPECT_EQ(rc, SQLITE_OK) << (message ? message : "") << "\n" << statement;
+  sqlite3_free(message);
+  sqlite3_close(db);
+}
+
 // `gallery forget --events-spool` takes the user's events out of a spool no run holds, at once: their bytes
 // do not wait on disk for the next run. A spool file that is not there is an input error before anything
 // is erased.
@@ -187,14 +199,18 @@ TEST(ReidLiveCli, GalleryForgetScrubsAClosedSpool) {
       run_bodyrec({"reid", short_walk().string(), "--gallery", gallery.string(), "-q", "--events",
                    "mqtt://127.0.0.1:1/site", "--events-spool", spool.string(), "--events-wait", "0"});
   ASSERT_EQ(first.exit_code, 0) << first.err;
+  sql(gallery, "DELETE FROM event_spools");  // a spool the gallery does not list: only --events-spool names it
   const std::set<int> before = spooled_users(spool);
   ASSERT_EQ(before.count(1), 1u);
   expect_one_line_error(
       run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1", "--events-spool", (dir / "none").string()}),
       3, (dir / "none").string() + ": no event spool there (--events-spool)");
   ASSERT_EQ(run_bodyrec({"gallery", "--gallery", gallery.string(), "show", "1"}).exit_code, 0);
-  const RunResult forget = run_bodyrec(
-      {"gallery", "--gallery", gallery.string(), "forget", "1", "--events-spool", spool.string(), "--json"});
+  RunResult forget = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1", "--json"});
+  ASSERT_EQ(forget.exit_code, 0) << forget.err;
+  EXPECT_TRUE(last_json_line(forget.out)["spools"].empty()) << forget.out;
+  EXPECT_EQ(spooled_users(spool), before);
+  forget = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "2", "--events-spool", spool.string(), "--json"});
   ASSERT_EQ(forget.exit_code, 0) << forget.err;
   EXPECT_TRUE(contains(forget.out, "events spool " + spool.string() + ": withdrew ")) << forget.out;
   const auto j = last_json_line(forget.out);
@@ -202,13 +218,15 @@ TEST(ReidLiveCli, GalleryForgetScrubsAClosedSpool) {
   EXPECT_GE(j["spools"][0]["removed"].get<int>(), 1);
   EXPECT_EQ(j["spools"][0]["status"], "scrubbed");
   const std::set<int> after = spooled_users(spool);
-  EXPECT_EQ(after.count(1), 0u);
+  EXPECT_EQ(after.count(2), 0u);
   EXPECT_EQ(after.size(), before.size() - 1);
 }
 
 // A reid run lists its spool in the gallery; gallery forget then scrubs it without being told, says where a
-// listed spool is on another machine, and takes a spool whose file is gone off the list. `gallery spools
-// --scrub` takes out the events of users the gallery no longer has (an erasure made elsewhere).
+// listed spool is on another machine, keeps one it cannot look at (exit 4 after everything is printed), and
+// takes a spool whose file is gone off the list. `gallery spools --scrub` takes out the events of users the
+// gallery no longer has (an erasure made elsewhere); `--drop` takes a path off the list; and
+// `reid --prune-unseen-for` scrubs the listed spools too.
 TEST(ReidLiveCli, GalleryForgetFindsTheSpoolsReidRunsList) {
   TempDir dir;
   const fs::path gallery = dir / "g.db", spool = dir / "events.spool";
@@ -226,51 +244,69 @@ TEST(ReidLiveCli, GalleryForgetFindsTheSpoolsReidRunsList) {
   ASSERT_EQ(j["spools"].size(), 1u) << j;
   EXPECT_EQ(j["spools"][0]["path"], fs::canonical(spool).string());
   EXPECT_EQ(j["spools"][0]["sensor"], "door");
-  EXPECT_EQ(j["spools"][0]["state"], "here");
-  const std::string host = j["spools"][0]["host"];
+  EXPECT_EQ(j["spools"][0]["place"], "here");
+  const std::string machine = j["spools"][0]["machine"];
+  ASSERT_FALSE(machine.empty());
 
-  // Another machine's spool, as its reid run would have listed it.
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open(gallery.c_str(), &db), SQLITE_OK);
-  const std::string insert = "INSERT INTO event_spools(host, path, sensor, first_used_ms, last_used_ms) VALUES ('not-" +
-                             host + "', '/var/lib/bodyrec/hall.spool', 'hall', 0, 0)";
-  ASSERT_EQ(sqlite3_exec(db, insert.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
-  sqlite3_close(db);
-
+  // Another machine's spool (with this machine's host name: names repeat), and one on this machine that
+  // cannot be looked at (its folder is not there: an unmounted disk).
+  sql(gallery, "INSERT INTO event_spools(machine, host, path, sensor, first_used_ms, last_used_ms) VALUES "
+               "('other-" + machine + "', 'robot', '/var/lib/bodyrec/hall.spool', 'hall', 0, 0), ('" + machine +
+               "', 'robot', '/nonexistent-disk/lab.spool', 'lab', 0, 0)");
   r = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "1", "--json"});
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_EQ(r.err, "bodyrec: error: 1 event spool not scrubbed (see above); the erased users' events may still be in it\n");
+  EXPECT_TRUE(contains(r.out, "forgot user 1: erased ")) << r.out;
   EXPECT_TRUE(contains(r.out, "events spool " + fs::canonical(spool).string() + ": withdrew ")) << r.out;
-  EXPECT_TRUE(contains(r.out, "events spool /var/lib/bodyrec/hall.spool on not-" + host + ": not on this machine"))
-      << r.out;
+  EXPECT_TRUE(contains(r.out, "events spool /var/lib/bodyrec/hall.spool on robot: not on this machine")) << r.out;
+  EXPECT_TRUE(contains(r.out, "events spool /nonexistent-disk/lab.spool: not scrubbed: ")) << r.out;
   j = last_json_line(r.out);
-  ASSERT_EQ(j["spools"].size(), 2u) << j;
-  EXPECT_EQ(j["spools"][0]["status"], "elsewhere");
-  EXPECT_EQ(j["spools"][1]["status"], "scrubbed");
-  EXPECT_GE(j["spools"][1]["removed"].get<int>(), 1);
+  std::map<std::string, std::string> status;
+  for (const auto& s : j["spools"]) status[s["path"]] = s["status"];
+  EXPECT_EQ(status, (std::map<std::string, std::string>{{fs::canonical(spool).string(), "scrubbed"},
+                                                         {"/var/lib/bodyrec/hall.spool", "elsewhere"},
+                                                         {"/nonexistent-disk/lab.spool", "error"}}));
   EXPECT_EQ(spooled_users(spool).count(1), 0u);
   EXPECT_EQ(spooled_users(spool).size(), before.size() - 1);
+  EXPECT_EQ(run_bodyrec({"gallery", "--gallery", gallery.string(), "show", "1"}).exit_code, 3);  // erased all the same
+
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools", "--drop", "/nonexistent-disk/lab.spool", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(last_json_line(r.out)["dropped"], 1);
+  EXPECT_EQ(last_json_line(r.out)["spools"].size(), 2u);
 
   // The spool as it was before the erasure (say, restored from a backup): --scrub takes user 1 out again.
   fs::copy_file(dir / "copy.spool", spool, fs::copy_options::overwrite_existing);
   r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools", "--scrub", "--json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  status.clear();
   j = last_json_line(r.out);
-  ASSERT_EQ(j["scrubbed"].size(), 2u) << j;
-  EXPECT_EQ(j["scrubbed"][1]["status"], "scrubbed");
+  for (const auto& s : j["scrub"]) status[s["path"]] = s["status"];
+  EXPECT_EQ(status, (std::map<std::string, std::string>{{fs::canonical(spool).string(), "scrubbed"},
+                                                         {"/var/lib/bodyrec/hall.spool", "elsewhere"}}));
   EXPECT_EQ(spooled_users(spool).count(1), 0u);
   EXPECT_EQ(spooled_users(spool).size(), before.size() - 1);
 
+  // reid --prune-unseen-for (the recording is older than a second): every user goes, and their events
+  // leave the listed spools; this run has no --events, so its stdout is untouched.
+  r = run_bodyrec({"reid", short_walk().string(), "--gallery", gallery.string(), "--prune-unseen-for", "1s",
+                   "--max-frames", "1", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.err, "bodyrec: withdrew ")) << r.err;
+  EXPECT_TRUE(contains(r.err, " events of pruned users from the event spool " + fs::canonical(spool).string())) << r.err;
+  EXPECT_TRUE(spooled_users(spool).empty());
+
   // A listed spool whose file is gone: reported and taken off the list.
   fs::remove(spool);
-  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "forget", "2", "--json"});
+  r = run_bodyrec({"gallery", "--gallery", gallery.string(), "purge", "--yes"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "events spool " + fs::weakly_canonical(spool).string() +
                                   ": no longer there; taken off the gallery's list")) << r.out;
   r = run_bodyrec({"gallery", "--gallery", gallery.string(), "spools"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, ": 1 event spools\n")) << r.out;
-  EXPECT_TRUE(contains(r.out, "not-" + host + ":/var/lib/bodyrec/hall.spool  sensor hall")) << r.out;
-  EXPECT_TRUE(contains(r.out, "on another machine")) << r.out;
+  EXPECT_TRUE(contains(r.out, "robot:/var/lib/bodyrec/hall.spool  sensor hall")) << r.out;
+  EXPECT_TRUE(contains(r.out, "  elsewhere\n")) << r.out;
 }
 
 // Plain-camera options given for an RGB-D recording would be ignored: each is a usage error naming it.

@@ -150,7 +150,7 @@ TEST(UsageErrors, RangeAndTypeErrorsAreReadable) {
   expect_usage_error({"groups", v, "--seconds-per-frame", "0.1"},
                      "unknown option --seconds-per-frame (see bodyrec groups --help)");
   expect_usage_error({"landmark", v, "--detector", "hog", "--model", "people.svm"},
-                     "--detector hog and --model people.svm name two detectors: give one");
+                     "--detector hog and --model/--detector-model people.svm name two detectors: give one");
   expect_usage_error({"landmark", v, "--local-margin", "0.2"}, "--local-margin requires --track");
   expect_usage_error({"groups", v, "--sensor-id", "hall"}, "--sensor-id names the sensor in MQTT events: it needs --events");
   expect_usage_error({"groups", v, "--roles", "bosses"}, "--roles: 'bosses' is not one of groups, thesis, voting");

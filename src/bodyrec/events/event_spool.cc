@@ -6,10 +6,12 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -33,13 +35,19 @@ void replace_file(const std::string& path, const std::string& text) {
     throw ProcessingError(path + ": cannot write the event spool: " + std::strerror(errno));
 }
 
-// The open descriptor of PATH.lock under an exclusive flock, or -1 when another process holds it.
-int lock_spool(const std::string& path) {
+// The open descriptor of PATH.lock under an exclusive flock, or -1 when another process still holds it
+// after `wait_s` seconds.
+int lock_spool(const std::string& path, double wait_s) {
   const std::string file = path + ".lock";
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0600);
   if (fd < 0) throw ProcessingError(file + ": cannot create the event spool's lock: " + std::strerror(errno));
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_s);
+  while (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int saved = errno;
+    if (saved == EWOULDBLOCK && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      continue;
+    }
     ::close(fd);
     if (saved == EWOULDBLOCK) return -1;
     throw ProcessingError(file + ": cannot lock the event spool: " + std::strerror(saved));
@@ -47,11 +55,19 @@ int lock_spool(const std::string& path) {
   return fd;
 }
 
+// Gives the spool's files back to `owner` (scrub run as root rewrote them as root). Files that are not
+// there are skipped.
+void give_back(const std::string& path, const struct stat& owner) {
+  for (const std::string& file : {path, path + ".sent", path + ".lock"})
+    if (::chown(file.c_str(), owner.st_uid, owner.st_gid) != 0 && errno != ENOENT)
+      throw ProcessingError(file + ": cannot give the event spool back to its owner: " + std::strerror(errno));
+}
+
 }  // namespace
 
-EventSpool::EventSpool(const std::string& path, size_t capacity) : path_(path), capacity_(capacity) {
+EventSpool::EventSpool(const std::string& path, size_t capacity, double lock_wait_s) : path_(path), capacity_(capacity) {
   if (capacity_ == 0) throw UsageError("event spool capacity must be at least 1");
-  lock_fd_ = lock_spool(path_);
+  lock_fd_ = lock_spool(path_, lock_wait_s);
   if (lock_fd_ < 0)
     throw SpoolInUse(path_ + ": the event spool is in use by another process (give each run its own --events-spool)");
   try {
@@ -70,13 +86,21 @@ SpoolScrub EventSpool::scrub(const std::string& path, const std::function<bool(c
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) throw InputError(path + ": no event spool there");
   SpoolScrub result;
+  const bool root = ::geteuid() == 0;
+  if (!root && st.st_uid != ::geteuid()) {
+    result.state = SpoolScrub::State::kOtherOwner;
+    return result;
+  }
   try {
-    // Opening compacts: the delivered lines leave the file whatever is removed.
-    EventSpool spool(path, std::numeric_limits<size_t>::max());
+    // Opening compacts: the delivered lines leave the file whatever is removed. No wait: a process that
+    // holds the lock is a running reid, which withdraws erased users' events itself.
+    EventSpool spool(path, std::numeric_limits<size_t>::max(), 0.0);
     result.removed = spool.erase_if(unwanted, false);
   } catch (const SpoolInUse&) {
-    result.in_use = true;
+    result.state = SpoolScrub::State::kInUse;
+    return result;
   }
+  if (root && st.st_uid != 0) give_back(path, st);
   return result;
 }
 
@@ -87,6 +111,11 @@ void EventSpool::load() {
     if (sent >> n && n > 0) sent_ = static_cast<size_t>(n);
   }
   std::ifstream in(path_);
+  // A spool that is there but cannot be read (another owner's file) must not be taken for an empty one:
+  // compact() below would overwrite its events.
+  const int open_errno = errno;
+  if (!in && ::access(path_.c_str(), F_OK) == 0)
+    throw ProcessingError(path_ + ": cannot read the event spool: " + std::strerror(open_errno));
   std::string line;
   size_t index = 0;
   while (std::getline(in, line)) {

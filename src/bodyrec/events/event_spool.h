@@ -33,8 +33,13 @@ class SpoolInUse : public ProcessingError {
 
 // What `EventSpool::scrub` did to a spool file.
 struct SpoolScrub {
-  bool in_use = false;  // a running process holds it (and withdraws what it must itself): left untouched
-  size_t removed = 0;   // undelivered events taken out
+  enum class State {
+    kScrubbed,    // rewritten without the unwanted events (its owner and group kept)
+    kInUse,       // a running process holds it (and withdraws what it must itself): left untouched
+    kOtherOwner,  // another user's file and this process is not root: rewriting it would take it from them
+  };
+  State state = State::kScrubbed;
+  size_t removed = 0;  // undelivered events taken out
 };
 
 // Not thread-safe: the publisher guards it with its lock.
@@ -43,17 +48,21 @@ class EventSpool {
   // Opens the spool at `path` (created when missing) and loads what an earlier run left undelivered.
   // `capacity` bounds the undelivered events; when it is full, a new event is dropped and counted
   // (the oldest, already waiting, keep their order). Lines that do not parse (a crash in the middle of a
-  // write) are dropped and counted too. SpoolInUse when another process has it open; ProcessingError
-  // when the files cannot be created or written. REQUIRES: capacity >= 1.
-  EventSpool(const std::string& path, size_t capacity);
+  // write) are dropped and counted too. Waits up to `lock_wait_s` for another process's lock (a
+  // `gallery forget` scrubbing it holds it for a moment), then SpoolInUse; ProcessingError when the
+  // files cannot be read, created or written (an existing spool that cannot be read is never
+  // overwritten). REQUIRES: capacity >= 1.
+  explicit EventSpool(const std::string& path, size_t capacity, double lock_wait_s = 2.0);
   ~EventSpool();
   EventSpool(const EventSpool&) = delete;
   EventSpool& operator=(const EventSpool&) = delete;
 
   // Removes from the spool file at `path`, which no process holds open, every undelivered event for which
   // `unwanted` is true, and the delivered lines still kept at its head: afterwards none of their bytes
-  // are in the file. A spool a running process holds is left as it is (`in_use`). InputError when there
-  // is no spool at `path`; ProcessingError when it cannot be rewritten.
+  // are in the file, and the files keep their owner and group (run as root, it gives them back). A spool
+  // a running process holds is left as it is (kInUse), as is another user's spool when this process is
+  // not root (kOtherOwner). InputError when there is no spool at `path`; ProcessingError when it cannot
+  // be read or rewritten.
   static SpoolScrub scrub(const std::string& path, const std::function<bool(const SpooledEvent&)>& unwanted);
 
   // Queues an event and writes it to the file; false (and dropped() grows) when the spool is full.

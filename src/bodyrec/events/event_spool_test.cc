@@ -1,8 +1,12 @@
 #include "bodyrec/events/event_spool.h"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <fstream>
+#include <future>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -115,10 +119,74 @@ TEST(EventSpool, ASpoolInUseCannotBeOpenedAgain) {
   {
     EventSpool s(path, 10);
     s.push(ev(1));
-    EXPECT_THROW(EventSpool(path, 10), SpoolInUse);
+    EXPECT_THROW(EventSpool(path, 10, 0.0), SpoolInUse);
+    EXPECT_THROW(EventSpool(path, 10, 0.2), SpoolInUse);
   }
   EventSpool again(path, 10);
   EXPECT_EQ(again.recovered(), 1u);
+}
+
+// A lock held for a moment (a `gallery forget` scrubbing the spool) does not stop a run that opens it.
+TEST(EventSpool, ARunWaitsForALockHeldForAMoment) {
+  TempDir dir;
+  const std::string path = (dir / "s").string();
+  std::promise<void> held;
+  std::thread scrubber([&] {
+    EventSpool s(path, 10);
+    s.push(ev(1));
+    held.set_value();
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  });
+  held.get_future().wait();
+  EventSpool run(path, 10);  // waits up to 2 s
+  EXPECT_EQ(run.recovered(), 1u);
+  scrubber.join();
+}
+
+// Run as root (a system service's spool scrubbed by `sudo bodyrec gallery forget`): the rewritten files go
+// back to their owner. Another user's spool is left alone by a process that is not root, and a spool that
+// cannot be read is never taken for an empty one.
+TEST(EventSpool, ScrubKeepsTheOwnerAndLeavesOtherUsersSpools) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root to give files to another user";
+  TempDir dir;
+  const std::string path = (dir / "s").string();
+  {
+    EventSpool s(path, 10);
+    s.push(ev(1));
+    s.push(ev(2));
+  }
+  const uid_t nobody = 65534;
+  for (const std::string& file : {path, path + ".sent", path + ".lock"}) ASSERT_EQ(::chown(file.c_str(), nobody, nobody), 0);
+  const auto two = [](const SpooledEvent& e) { return e.payload == "{\"n\":2}"; };
+  const SpoolScrub done = EventSpool::scrub(path, two);
+  EXPECT_EQ(done.state, SpoolScrub::State::kScrubbed);
+  EXPECT_EQ(done.removed, 1u);
+  for (const std::string& file : {path, path + ".sent", path + ".lock"}) {
+    struct stat st {};
+    ASSERT_EQ(::stat(file.c_str(), &st), 0) << file;
+    EXPECT_EQ(st.st_uid, nobody) << file;
+    EXPECT_EQ(st.st_gid, nobody) << file;
+  }
+  // As another user (effective uid only, switched back below).
+  const std::string mine = (dir / "root.spool").string();
+  {
+    EventSpool s(mine, 10);
+    s.push(ev(3));
+  }
+  ASSERT_EQ(::chmod(dir.path().c_str(), 0777), 0);
+  ASSERT_EQ(::chmod((mine + ".lock").c_str(), 0666), 0);  // so that the read is what fails below
+  ASSERT_EQ(::seteuid(nobody), 0);
+  const SpoolScrub other = EventSpool::scrub(mine, two);
+  bool unreadable = false;
+  try {
+    EventSpool open(mine, 10, 0.0);
+  } catch (const ProcessingError& e) {
+    unreadable = std::string(e.what()).find("cannot read the event spool") != std::string::npos;
+  }
+  ASSERT_EQ(::seteuid(0), 0);
+  EXPECT_EQ(other.state, SpoolScrub::State::kOtherOwner);
+  EXPECT_TRUE(unreadable);
+  EXPECT_EQ(bodyrec::testing::lines_of(read_text(mine)).size(), 1u);
 }
 
 // What `gallery forget --events-spool` does: the unwanted events and the delivered lines leave the file;
@@ -133,12 +201,12 @@ TEST(EventSpool, ScrubRemovesUnwantedAndDeliveredLinesFromAClosedSpool) {
     drain(s, 1);  // n 0 delivered: its line stays in the file until compaction
     EXPECT_NE(read_text(path).find("\\\"n\\\":0"), std::string::npos);
     const SpoolScrub busy = EventSpool::scrub(path, two_or_four);
-    EXPECT_TRUE(busy.in_use);
+    EXPECT_EQ(busy.state, SpoolScrub::State::kInUse);
     EXPECT_EQ(busy.removed, 0u);
     EXPECT_EQ(bodyrec::testing::lines_of(read_text(path)).size(), 6u);
   }
   const SpoolScrub done = EventSpool::scrub(path, two_or_four);
-  EXPECT_FALSE(done.in_use);
+  EXPECT_EQ(done.state, SpoolScrub::State::kScrubbed);
   EXPECT_EQ(done.removed, 2u);
   const std::string text = read_text(path);
   EXPECT_EQ(bodyrec::testing::lines_of(text).size(), 3u) << text;

@@ -116,10 +116,15 @@ bool valid_sensor_id(const std::string& id) {
   return true;
 }
 
-std::string default_sensor_id() {
+std::string host_name() {
   char name[256] = {};
-  if (::gethostname(name, sizeof name - 1) != 0 || !name[0]) return "default";
-  std::string id(name);
+  if (::gethostname(name, sizeof name - 1) != 0) return "";
+  return name;
+}
+
+std::string default_sensor_id() {
+  std::string id = host_name();
+  if (id.empty()) return "default";
   if (id.size() > 64) id.resize(64);
   for (char& c : id)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_' && c != '-') c = '-';

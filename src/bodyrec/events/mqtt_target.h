@@ -31,6 +31,8 @@ MqttCredentials read_mqtt_credentials(const std::string& path);
 
 // A topic level for a sensor name: letters, digits, '.', '_' and '-', 1 to 64 characters.
 bool valid_sensor_id(const std::string& id);
+// This machine's host name as gethostname() gives it; "" when it has none.
+std::string host_name();
 // The default sensor id: this machine's host name with other characters as '-', "default" when it has
 // none.
 std::string default_sensor_id();

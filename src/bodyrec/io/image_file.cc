@@ -33,9 +33,11 @@ std::string png_reason(const std::string& bytes) {
   while (at + 8 <= bytes.size()) {
     const unsigned char* p = data + at;
     const uint64_t length = big_endian32(p);
-    if (at + 12 + length > bytes.size()) break;
     const std::string type(reinterpret_cast<const char*>(p + 4), 4);
-    if (crc32(crc32(0L, Z_NULL, 0), p + 4, static_cast<uInt>(4 + length)) != big_endian32(p + 8 + length))
+    if (length > 0x7fffffffu)  // the PNG specification's limit
+      return "corrupt PNG file (chunk " + type + " at byte " + std::to_string(at) + " has an impossible length)";
+    if (at + 12 + length > bytes.size()) break;
+    if (crc32_z(crc32_z(0L, Z_NULL, 0), p + 4, static_cast<size_t>(4 + length)) != big_endian32(p + 8 + length))
       return "corrupt PNG file (chunk " + type + " at byte " + std::to_string(at) + " fails its CRC check)";
     if (type == "IEND") return "";
     at += 12 + length;

@@ -44,13 +44,16 @@ TEST(ImageFile, CompleteFilesPassAndCutFilesAreTruncated) {
 TEST(ImageFile, APngChunkThatFailsItsCrcIsCorrupt) {
   const std::string whole = encoded(".png");
   const size_t idat = whole.find("IDAT") - 4;  // the chunk starts with its length
-  for (const size_t at : {size_t{20}, idat + 30, whole.size() - 2}) {  // IHDR's width, image data, IEND's CRC
+  for (const size_t at : {size_t{20}, idat + 30, whole.size() - 2}) {  // IHDR's height, image data, IEND's CRC
     std::string bad = whole;
     bad[at] = static_cast<char>(bad[at] ^ 1);
     const std::string chunk = at < idat ? "IHDR at byte 8" : at < whole.size() - 12 ? "IDAT at byte " + std::to_string(idat)
                                                                                     : "IEND at byte " + std::to_string(whole.size() - 12);
     EXPECT_EQ(broken_image_reason(bad), "corrupt PNG file (chunk " + chunk + " fails its CRC check)") << at;
   }
+  std::string bad = whole;
+  bad[idat] = static_cast<char>(0x80);  // a length above 2^31 - 1
+  EXPECT_EQ(broken_image_reason(bad), "corrupt PNG file (chunk IDAT at byte " + std::to_string(idat) + " has an impossible length)");
 }
 
 TEST(ImageFile, BadFilesAreInputErrorsNamingTheFile) {

@@ -106,11 +106,11 @@ class Gallery : public GalleryCache {
   UserId enrol(const GalleryScan& scan, const std::string& label = "", std::optional<int64_t> track = {},
                const std::string& source = "");
   void set_label(UserId user, const std::string& label);
-  // Lists a reid run's event spool, or moves a listed one's last_used (and sensor) to this run's; first_used
-  // is kept. Not an erasure's business: it changes no user, scan or event.
+  // Lists a reid run's event spool, or moves a listed one's last_used (and host and sensor) to this run's;
+  // first_used is kept. Keyed by (machine, path). It changes no user, scan or event.
   void note_event_spool(const EventSpoolRecord& spool);
   // Takes a spool off the list (the file is gone); false when it was not listed.
-  bool drop_event_spool(const std::string& host, const std::string& path);
+  bool drop_event_spool(const std::string& machine, const std::string& path);
   // From now on put_scan keeps features only, as with GalleryOptions::store_images = false.
   void keep_features_only() { options_.store_images = false; }
 
@@ -163,7 +163,7 @@ class Gallery : public GalleryCache {
   std::vector<Event> events(std::optional<UserId> user = {});  // oldest first; all when no user
   int user_count();
   std::vector<UserId> users_unseen_since(GalleryTime since);  // last_seen before `since`, by id
-  std::vector<EventSpoolRecord> event_spools();  // by host, then path
+  std::vector<EventSpoolRecord> event_spools();  // by host, machine, then path
   int64_t scan_count();         // stored scans
   int64_t scans_with_images();  // stored scans that hold body pixels (an image)
 

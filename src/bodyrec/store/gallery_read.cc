@@ -67,15 +67,18 @@ std::vector<UserId> Gallery::users_unseen_since(GalleryTime since) {
 }
 
 std::vector<EventSpoolRecord> Gallery::event_spools() {
-  sql::Statement s(*db_, "SELECT host, path, sensor, first_used_ms, last_used_ms FROM event_spools ORDER BY host, path");
+  sql::Statement s(*db_,
+                   "SELECT machine, host, path, sensor, first_used_ms, last_used_ms FROM event_spools "
+                   "ORDER BY host, machine, path");
   std::vector<EventSpoolRecord> spools;
   while (s.step()) {
     EventSpoolRecord r;
-    r.host = s.column_text(0);
-    r.path = s.column_text(1);
-    r.sensor = s.column_text(2);
-    r.first_used = from_unix_ms(s.column_int(3));
-    r.last_used = from_unix_ms(s.column_int(4));
+    r.machine = s.column_text(0);
+    r.host = s.column_text(1);
+    r.path = s.column_text(2);
+    r.sensor = s.column_text(3);
+    r.first_used = from_unix_ms(s.column_int(4));
+    r.last_used = from_unix_ms(s.column_int(5));
     spools.push_back(std::move(r));
   }
   return spools;

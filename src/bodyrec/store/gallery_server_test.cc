@@ -167,11 +167,11 @@ TEST_F(GalleryPostgres, RolesFromTheDocsLetASensorEnrolButNotErase) {
   e.kind = EventKind::kRecognised;
   for (int i = 0; i < 3; ++i) s.log_event(e);  // trims the history
   EXPECT_EQ(s.events(u).size(), 2u);
-  s.note_event_spool({"robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(1), from_unix_ms(1)});
-  s.note_event_spool({"robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(2), from_unix_ms(2)});
+  s.note_event_spool({"m1", "robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(1), from_unix_ms(1)});
+  s.note_event_spool({"m1", "robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(2), from_unix_ms(2)});
   ASSERT_EQ(s.event_spools().size(), 1u);
   EXPECT_EQ(to_unix_ms(s.event_spools()[0].last_used), 2);
-  EXPECT_TRUE(s.drop_event_spool("robot", "/var/lib/bodyrec/door.spool"));
+  EXPECT_TRUE(s.drop_event_spool("m1", "/var/lib/bodyrec/door.spool"));
   Gallery a(admin);
   a.enrol(make_scan(View::SL, 0.5, 53));
   EXPECT_TRUE(s.refresh());

@@ -72,48 +72,36 @@ TEST_P(GallerySuite, SchemaOneIsUpgradedKeepingEveryRow) {
 }
 
 // reid runs list their event spools; a second run with the same spool moves last_used, not first_used.
-TEST_P(GallerySuite, EventSpoolsAreListedOncePerHostAndPath) {
+// Spools are told apart by machine id, not host name (two sensors may both be called "raspberrypi").
+TEST_P(GallerySuite, EventSpoolsAreListedOncePerMachineAndPath) {
   const std::string path = fresh();
   Gallery g(path, creating());
-  EventSpoolRecord a{"robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(1000), from_unix_ms(1000)};
+  EventSpoolRecord a{"m1", "robot", "/var/lib/bodyrec/door.spool", "door", from_unix_ms(1000), from_unix_ms(1000)};
   g.note_event_spool(a);
-  g.note_event_spool({"robot", "/tmp/hall.spool", "hall", from_unix_ms(2000), from_unix_ms(2000)});
-  g.note_event_spool({"lab-pc", a.path, "door", from_unix_ms(3000), from_unix_ms(3000)});  // another machine's file
+  g.note_event_spool({"m1", "robot", "/tmp/hall.spool", "hall", from_unix_ms(2000), from_unix_ms(2000)});
+  g.note_event_spool({"m2", "robot", a.path, "door", from_unix_ms(3000), from_unix_ms(3000)});  // same name, other machine
+  a.host = "robot-2";  // renamed
   a.sensor = "door-2";
   a.first_used = a.last_used = from_unix_ms(5000);
   g.note_event_spool(a);
   std::vector<EventSpoolRecord> spools = g.event_spools();
   ASSERT_EQ(spools.size(), 3u);
-  EXPECT_EQ(spools[0].host, "lab-pc");
-  EXPECT_EQ(spools[1].path, "/tmp/hall.spool");
+  EXPECT_EQ(spools[0].machine, "m1");
+  EXPECT_EQ(spools[0].path, "/tmp/hall.spool");
+  EXPECT_EQ(spools[1].machine, "m2");
+  EXPECT_EQ(spools[2].machine, "m1");
+  EXPECT_EQ(spools[2].host, "robot-2");
   EXPECT_EQ(spools[2].path, a.path);
   EXPECT_EQ(spools[2].sensor, "door-2");
   EXPECT_EQ(to_unix_ms(spools[2].first_used), 1000);
   EXPECT_EQ(to_unix_ms(spools[2].last_used), 5000);
-  EXPECT_TRUE(g.drop_event_spool("robot", "/tmp/hall.spool"));
-  EXPECT_FALSE(g.drop_event_spool("robot", "/tmp/hall.spool"));
+  EXPECT_TRUE(g.drop_event_spool("m1", "/tmp/hall.spool"));
+  EXPECT_FALSE(g.drop_event_spool("m1", "/tmp/hall.spool"));
   EXPECT_EQ(g.event_spools().size(), 2u);
   // Erasing users leaves the list alone: it names files, not people.
   g.enrol(make_scan(View::F, 0.5, 1));
   g.purge();
   EXPECT_EQ(g.event_spools().size(), 2u);
-}
-
-TEST_P(GallerySuite, EventsRecordTheirSensor) {
-  const std::string path = fresh();
-  GalleryOptions o = creating();
-  o.sensor = "hall-2";
-  Gallery g(path, o);
-  const UserId u = g.enrol(make_scan(View::F, 0.5, 1));
-  Event e;
-  e.user = u;
-  e.kind = EventKind::kRecognised;
-  e.sensor = "door";  // an event's own sensor wins
-  g.log_event(e);
-  const auto events = g.events(u);
-  ASSERT_EQ(events.size(), 2u);
-  EXPECT_EQ(events[0].sensor, "hall-2");
-  EXPECT_EQ(events[1].sensor, "door");
 }
 
 TEST_P(GallerySuite, PutScanKeepsTheBestScanPerUserAndView) {

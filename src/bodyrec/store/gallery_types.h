@@ -94,8 +94,9 @@ struct Event {
 // A file where a reid run keeps events it has not yet delivered over MQTT (reid --events). The gallery
 // lists these so that an erasure can take the erased users' events out of them too.
 struct EventSpoolRecord {
-  std::string host;    // the machine the file is on (its host name)
-  std::string path;    // absolute on that machine
+  std::string machine;  // the machine the file is on: its /etc/machine-id (host names repeat)
+  std::string host;     // that machine's host name, for people
+  std::string path;     // absolute on that machine
   std::string sensor;  // the run's --sensor-id
   GalleryTime first_used = GalleryClock::now(), last_used = GalleryClock::now();
 };

@@ -63,18 +63,19 @@ void Gallery::set_label(UserId user, const std::string& label) {
 void Gallery::note_event_spool(const EventSpoolRecord& spool) {
   transaction([&] {
     sql::Statement s(*db_,
-                     "INSERT INTO event_spools(host, path, sensor, first_used_ms, last_used_ms) VALUES (?1, ?2, ?3, ?4, ?5) "
-                     "ON CONFLICT (host, path) DO UPDATE SET sensor = excluded.sensor, last_used_ms = excluded.last_used_ms");
-    s.bind(1, spool.host).bind(2, spool.path).bind(3, spool.sensor);
-    s.bind(4, to_unix_ms(spool.first_used)).bind(5, to_unix_ms(spool.last_used)).run();
+                     "INSERT INTO event_spools(machine, host, path, sensor, first_used_ms, last_used_ms) "
+                     "VALUES (?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT (machine, path) DO UPDATE SET host = excluded.host, "
+                     "sensor = excluded.sensor, last_used_ms = excluded.last_used_ms");
+    s.bind(1, spool.machine).bind(2, spool.host).bind(3, spool.path).bind(4, spool.sensor);
+    s.bind(5, to_unix_ms(spool.first_used)).bind(6, to_unix_ms(spool.last_used)).run();
   });
 }
 
-bool Gallery::drop_event_spool(const std::string& host, const std::string& path) {
+bool Gallery::drop_event_spool(const std::string& machine, const std::string& path) {
   bool dropped = false;
   transaction([&] {
-    sql::Statement s(*db_, "DELETE FROM event_spools WHERE host = ?1 AND path = ?2");
-    s.bind(1, host).bind(2, path).run();
+    sql::Statement s(*db_, "DELETE FROM event_spools WHERE machine = ?1 AND path = ?2");
+    s.bind(1, machine).bind(2, path).run();
     dropped = s.changes() > 0;
   });
   return dropped;

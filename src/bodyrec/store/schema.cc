@@ -11,8 +11,8 @@ namespace bodyrec::store {
 namespace {
 
 // Version 0 -> 1: the first schema. Times are integer milliseconds since the Unix epoch (UTC); a view
-// is View's numeric value (reid/view.h). Later versions add one entry each with their ALTER TABLE
-// statements; galleries are upgraded one step at a time, so every old version keeps working.
+// is View's numeric value (reid/view.h). Later versions add one entry each with their statements (ALTER
+// TABLE, CREATE TABLE); galleries are upgraded one step at a time, so every old version keeps working.
 constexpr const char* kV1 = R"sql(
 CREATE TABLE users(
   id {id},  -- a forgotten user's id is never reused
@@ -69,16 +69,18 @@ ALTER TABLE scans ADD COLUMN stored_ms {int};
 )sql";
 
 // Version 3 -> 4: the event spools of reid runs that publish over MQTT (reid --events), so that erasing
-// users also takes their undelivered events out of those files (gallery forget/purge/prune). `host` is
-// the machine the file is on; `path` is absolute there.
+// users also takes their undelivered events out of those files (gallery forget/purge/prune). `machine`
+// identifies the machine the file is on (its /etc/machine-id: host names repeat), `host` names it for
+// people; `path` is absolute there.
 constexpr const char* kV4 = R"sql(
 CREATE TABLE event_spools(
+  machine TEXT NOT NULL,
   host TEXT NOT NULL,
   path TEXT NOT NULL,
   sensor TEXT NOT NULL DEFAULT '',
   first_used_ms {int} NOT NULL,
   last_used_ms {int} NOT NULL,
-  PRIMARY KEY (host, path));
+  PRIMARY KEY (machine, path));
 )sql";
 
 constexpr std::array<const char*, kGallerySchemaVersion> kSteps = {kV1, kV2, kV3, kV4};
