@@ -5,6 +5,7 @@
 // database, and the events go over MQTT with --events (issue 47).
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <iterator>
 #include <map>
@@ -22,6 +23,22 @@
 
 namespace bodyrec::cli {
 namespace {
+
+// What --prune-unseen-for erased leaves the other spools the gallery lists on this machine too (this run's
+// own is withdrawn by its publisher); a line on stderr for each spool that lost events or could not be
+// scrubbed, so that stdout stays the run's.
+void scrub_pruned(Gallery& gallery, const std::function<bool(int64_t user)>& exists) {
+  const SpoolScrubs pruned = scrub_spools(gallery, {}, [&](int64_t user) { return !exists(user); }, nullptr);
+  for (const nlohmann::json& spool : pruned.spools) {
+    const std::string path = spool["path"];
+    if (spool["status"] == "error")
+      std::fprintf(stderr, "bodyrec: event spool %s not scrubbed: %s\n", path.c_str(),
+                   spool["error"].get<std::string>().c_str());
+    else if (spool["removed"].get<size_t>() > 0)
+      std::fprintf(stderr, "bodyrec: withdrew %zu events of pruned users from the event spool %s\n",
+                   spool["removed"].get<size_t>(), path.c_str());
+  }
+}
 
 struct ReidCommand {
   std::string input, jsonl;
@@ -57,20 +74,6 @@ struct ReidCommand {
     const bool text = !quiet && jsonl != "-";
     auto gallery = open_reid_gallery(o, o.gallery.path);
     list_run_spool(*gallery, events);  // so that gallery forget finds this run's undelivered events
-    // What --prune-unseen-for erased leaves the other spools on this machine too (this run's own is
-    // withdrawn below); a line on stderr for each that lost events or could not be scrubbed.
-    if (!options.prune_unseen_for.empty()) {
-      std::set<int64_t> users;
-      for (const User& u : gallery->users()) users.insert(u.id);
-      const SpoolScrubs pruned = scrub_spools(*gallery, {}, [&](int64_t user) { return users.count(user) == 0; }, nullptr);
-      for (const nlohmann::json& spool : pruned.spools)
-        if (spool["status"] == "error")
-          std::fprintf(stderr, "bodyrec: event spool %s not scrubbed: %s\n", spool["path"].get<std::string>().c_str(),
-                       spool["error"].get<std::string>().c_str());
-        else if (spool["removed"].get<size_t>() > 0)
-          std::fprintf(stderr, "bodyrec: withdrew %zu events of pruned users from the event spool %s\n",
-                       spool["removed"].get<size_t>(), spool["path"].get<std::string>().c_str());
-    }
     const std::string source = options.colour.camera >= 0 ? "camera " + std::to_string(options.colour.camera)
                                : in.source                 ? in.source->name()
                                                            : input;
@@ -82,6 +85,7 @@ struct ReidCommand {
     // nor from this run's undelivered events once another process erases them (checked after each frame).
     const auto exists = [&store](int64_t user) { return store.has_user(user); };
     events.withdraw_erased(exists);
+    if (!options.prune_unseen_for.empty()) scrub_pruned(*gallery, exists);
     std::set<int64_t> published;  // users with events given to the publisher
     std::map<std::string, int> counts;
     int bodies = 0, last_frame = -1;

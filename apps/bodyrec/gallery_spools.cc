@@ -66,10 +66,14 @@ nlohmann::json scrub_one(const std::string& path, const std::string& host,
 }  // namespace
 
 std::string this_machine() {
-  std::ifstream in("/etc/machine-id");
-  std::string id;
-  if (in >> id && !id.empty()) return id;
-  return "host:" + host_name();
+  // Read once: it does not change while the process runs, and every listed spool asks.
+  static const std::string machine = [] {
+    std::ifstream in("/etc/machine-id");
+    std::string id;
+    if (in >> id && !id.empty()) return id;
+    return "host:" + host_name();
+  }();
+  return machine;
 }
 
 const char* spool_place_name(SpoolPlace place) {
